@@ -1,0 +1,32 @@
+# Quick start (README): `make demo` and `make test`. Both install missing Debian packages,
+# configure and build (Release) first.
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+
+.PHONY: all deps build demo test bench validate clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+build: deps
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD_DIR) -j$(JOBS)
+
+demo: build
+	@BIN=$(BUILD_DIR)/bin/wetroad OUT=$(BUILD_DIR)/demo scripts/demo.sh
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+
+# Benchmarks and long validations: run by hand, results go into issue notes.
+bench: build
+	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3
+	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3 --files
+
+validate: build
+	$(BUILD_DIR)/bin/wetroad bench summits --realizations 100
+
+clean:
+	rm -rf $(BUILD_DIR)

@@ -1,0 +1,194 @@
+#include "bench/bench_harness.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+
+#include "lib/analytic/nayak_summits.hpp"
+#include "lib/core/provenance.hpp"
+#include "roads/analyze.hpp"
+#include "roads/surface_file.hpp"
+#include "roads/surface_import.hpp"
+#include "roads/synthesize.hpp"
+
+namespace wr::bench {
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+LoadedSurface as_loaded(SynthResult&& r) {
+  LoadedSurface s;
+  s.source = "(in memory)";
+  s.format = "memory";
+  s.dropout.assign(r.map.h.size(), 0);
+  s.synthesis = SynthesisRecord{r.psd, r.k_eq44, r.h0_eq44_on_lattice, 1, 1};
+  s.map = std::move(r.map);
+  return s;
+}
+
+nlohmann::json speed_one(std::size_t n, int repeats, int threads, bool with_files, const std::string& dir) {
+  double best_synth = 1e300, best_analyze = 1e300, best_write = 1e300, best_read = 1e300, best_total = 1e300;
+  nlohmann::json phases;
+  for (int rep = 0; rep < repeats; ++rep) {
+    SynthParams p;
+    p.nx = p.ny = n;
+    p.dx = 0.03 / n;
+    p.h0 = 3e-4;
+    p.threads = threads;
+    p.seed = 1 + rep;
+    const double t0 = now();
+    SynthResult r = synthesize(p);
+    const double t1 = now();
+    double tw = 0, tr = 0;
+    LoadedSurface s;
+    if (with_files) {
+      const std::string path = dir + "/bench-" + std::to_string(n) + ".h5";
+      write_surface_file(path, r.map, SynthesisRecord{r.psd, r.k_eq44, r.h0_eq44_on_lattice, p.seed, 1}, {});
+      const double t2 = now();
+      r = SynthResult{};
+      s = load_surface(path);
+      tr = now() - t2;
+      tw = t2 - t1;
+      std::filesystem::remove(path);
+    } else {
+      s = as_loaded(std::move(r));
+    }
+    const double t3 = now();
+    AnalysisOptions opt;
+    opt.threads = threads;
+    const AnalysisReport rep_ = analyze_surface(s, opt);
+    const double t4 = now();
+    const double total = (t1 - t0) + tw + tr + (t4 - t3);
+    if (total < best_total) phases = rep_.timer.to_json();
+    best_synth = std::min(best_synth, t1 - t0);
+    best_analyze = std::min(best_analyze, t4 - t3);
+    best_write = std::min(best_write, tw);
+    best_read = std::min(best_read, tr);
+    best_total = std::min(best_total, total);
+  }
+  const double map_bytes = double(n) * double(n) * sizeof(double);
+  const double rss = double(peak_rss_bytes());
+  return {{"n", n},
+          {"synth_s", best_synth},
+          {"analyze_s", best_analyze},
+          {"write_s", best_write},
+          {"read_s", best_read},
+          {"total_s", best_total},
+          {"analyze_phases_s", phases},
+          {"peak_rss_bytes", rss},
+          {"map_bytes", map_bytes},
+          {"peak_rss_over_map", rss / map_bytes},
+          {"repeats", repeats},
+          {"threads", threads}};
+}
+
+}  // namespace
+
+nlohmann::json speed(const std::vector<std::size_t>& sizes, int repeats, int threads, bool with_files,
+                     const std::string& scratch_dir) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t n : sizes) {
+    int fd[2];
+    if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
+    const pid_t pid = fork();
+    if (pid == 0) {
+      close(fd[0]);
+      std::string s;
+      try {
+        s = speed_one(n, repeats, threads, with_files, scratch_dir).dump();
+      } catch (const std::exception& e) {
+        s = nlohmann::json{{"n", n}, {"error", e.what()}}.dump();
+      }
+      const char* p = s.data();
+      std::size_t left = s.size();
+      while (left > 0) {
+        const ssize_t w = write(fd[1], p, left);
+        if (w <= 0) break;
+        p += w;
+        left -= static_cast<std::size_t>(w);
+      }
+      close(fd[1]);
+      _exit(0);
+    }
+    close(fd[1]);
+    std::string buf;
+    char chunk[4096];
+    ssize_t got;
+    while ((got = read(fd[0], chunk, sizeof chunk)) > 0) buf.append(chunk, static_cast<std::size_t>(got));
+    close(fd[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    out.push_back(buf.empty() ? nlohmann::json{{"n", n}, {"error", "child failed"}} : nlohmann::json::parse(buf));
+  }
+  return out;
+}
+
+nlohmann::json summit_ensemble(const std::vector<double>& fractions, int realizations, int threads) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (double f : fractions) {
+    double sum_mean = 0, sum_var = 0, sum_mean2 = 0, sum_var2 = 0, sum_alpha = 0, sum_density = 0, sum_ks = 0;
+    double alpha_prescribed = 0, density_prescribed = 0;
+    int n = 0;
+    for (int r = 0; r < realizations; ++r) {
+      // Thesis dataset C: 300 x 300, dx 0.1 mm, h0 0.71 mm, H 0.7, q1 = 2 pi / dx (needs 2x oversampling).
+      SynthParams p;
+      p.nx = p.ny = 300;
+      p.dx = 1e-4;
+      p.h0 = 0.708e-3;
+      p.hurst = 0.7;
+      p.q1 = 2 * std::numbers::pi / p.dx;
+      p.oversample = 2;
+      p.q1_fraction = f;
+      p.seed = 1000 + static_cast<std::uint64_t>(r);
+      p.threads = threads;
+      SynthResult sr = synthesize(p);
+      LoadedSurface s = as_loaded(std::move(sr));
+      AnalysisOptions opt;
+      opt.threads = threads;
+      opt.expected_mpd = false;
+      const AnalysisReport rep = analyze_surface(s, opt);
+      if (!rep.summit_mean) continue;
+      ++n;
+      sum_mean += *rep.summit_mean;
+      sum_mean2 += *rep.summit_mean * *rep.summit_mean;
+      sum_var += *rep.summit_var;
+      sum_var2 += *rep.summit_var * *rep.summit_var;
+      sum_alpha += rep.moments.alpha();
+      sum_density += *rep.summit_density;
+      sum_ks += rep.summit_ks.value_or(0);
+      alpha_prescribed = *rep.prescribed.alpha;
+      density_prescribed = *rep.prescribed.summit_density;
+      if ((r + 1) % 10 == 0 || r + 1 == realizations)
+        std::fprintf(stderr, "\r  q1/q1^ = %-6.4g  %3d/%d surfaces", f, r + 1, realizations);
+    }
+    std::fprintf(stderr, "\n");
+    const double mean = sum_mean / n, var = sum_var / n, alpha_meas = sum_alpha / n;
+    const auto gw = greenwood_summit_moments(alpha_prescribed);
+    const auto gw_meas = greenwood_summit_moments(alpha_meas);
+    rows.push_back({{"q1_fraction", f},
+                    {"surfaces", n},
+                    {"alpha_prescribed", alpha_prescribed},
+                    {"alpha_measured", alpha_meas},
+                    {"summit_mean", mean},
+                    {"summit_mean_sd", std::sqrt(std::max(0.0, sum_mean2 / n - mean * mean))},
+                    {"summit_var", var},
+                    {"summit_var_sd", std::sqrt(std::max(0.0, sum_var2 / n - var * var))},
+                    {"eq45_mean", gw.mean},
+                    {"eq45_var", gw.variance},
+                    {"eq45_mean_at_measured_alpha", gw_meas.mean},
+                    {"eq45_var_at_measured_alpha", gw_meas.variance},
+                    {"summit_density", sum_density / n},
+                    {"nayak_density_prescribed", density_prescribed},
+                    {"ks_distance", sum_ks / n}});
+  }
+  return rows;
+}
+
+}  // namespace wr::bench

@@ -1,0 +1,42 @@
+#pragma once
+// Thin RAII wrapper over FFTW's real <-> half-complex transforms on a row-major ny x nx grid.
+//
+// Plans use FFTW_ESTIMATE so that the same input always gives bit-identical output (measured
+// plans may pick different algorithms from run to run). Unnormalised, as FFTW:
+// forward X[k] = sum_n x[n] e^{-i k.n}, backward x[n] = sum_k X[k] e^{+i k.n}.
+#include <complex>
+#include <cstddef>
+
+#include <fftw3.h>
+
+namespace wr {
+
+// Hardware threads of this machine (at least 1): the default FFT thread count.
+int hardware_threads();
+
+class RealFft2d {
+ public:
+  // ny == 1 gives a 1-D transform of length nx. threads <= 0: hardware_threads().
+  RealFft2d(std::size_t nx, std::size_t ny, int threads = 0);
+  ~RealFft2d();
+  RealFft2d(const RealFft2d&) = delete;
+  RealFft2d& operator=(const RealFft2d&) = delete;
+
+  std::size_t nx() const { return nx_; }
+  std::size_t ny() const { return ny_; }
+  std::size_t nxh() const { return nx_ / 2 + 1; }  // stored columns of the half spectrum
+
+  double* real() { return real_; }                          // ny*nx
+  std::complex<double>* spectrum() { return spec_; }        // ny*nxh, row-major
+  void forward();   // real() -> spectrum()
+  void backward();  // spectrum() -> real() (destroys spectrum())
+
+ private:
+  std::size_t nx_, ny_;
+  double* real_ = nullptr;
+  std::complex<double>* spec_ = nullptr;
+  fftw_plan fwd_ = nullptr;
+  fftw_plan bwd_ = nullptr;
+};
+
+}  // namespace wr

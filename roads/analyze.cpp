@@ -1,0 +1,255 @@
+#include "roads/analyze.hpp"
+
+#include <cmath>
+
+#include "lib/analytic/contact_theory.hpp"
+#include "lib/analytic/nayak_summits.hpp"
+#include "lib/io/hdf5_file.hpp"
+#include "roads/height_stats.hpp"
+#include "roads/summits.hpp"
+
+namespace wr {
+namespace {
+
+nlohmann::json opt_json(const std::optional<double>& v) {
+  return v && std::isfinite(*v) ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json num_json(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// The prescribed continuous spectrum: the eq. 4.4 plateau (what the thesis integrates), cut.
+SelfAffinePsd continuous_psd(const SynthesisRecord& s) {
+  SelfAffinePsd p = s.psd;
+  p.k = s.k_eq44;
+  return p;
+}
+
+SurfaceFigures prescribed_figures(const SynthesisRecord& s, const std::optional<ExpectedMpd>& e) {
+  const SelfAffinePsd p = continuous_psd(s);
+  SurfaceFigures f;
+  f.m0 = p.m0();
+  f.m2 = p.m2();
+  f.m4 = p.m4();
+  f.alpha = p.alpha();
+  f.h0 = std::sqrt(*f.m0);
+  f.rms_slope_spectral = std::sqrt(2 * *f.m2);
+  f.hurst = p.hurst;
+  f.q0 = p.q0;
+  f.plateau = s.psd.k;  // the plateau actually synthesized (lattice-normalised)
+  f.summit_density = nayak_summit_density(*f.m2, *f.m4);
+  if (*f.alpha > 1.5) {
+    const auto g = greenwood_summit_moments(*f.alpha);
+    f.summit_mean = g.mean;
+    f.summit_var = g.variance;
+  }
+  if (e) {
+    f.mpd = e->mpd;
+    f.mpd_std = e->mpd_std;
+    f.etd = estimated_texture_depth(e->mpd);
+  }
+  return f;
+}
+
+}  // namespace
+
+AnalysisReport analyze_surface(const LoadedSurface& s, const AnalysisOptions& opt) {
+  AnalysisReport r;
+  const HeightMap& m = s.map;
+  r.source = s.source;
+  r.format = s.format;
+  r.nx = m.nx;
+  r.ny = m.ny;
+  r.dx = m.dx;
+  r.dy = m.dy;
+  r.profile = m.is_profile();
+  r.periodic = m.periodic;
+  r.dropouts = s.dropouts;
+  r.tilt_x = s.tilt_x;
+  r.tilt_y = s.tilt_y;
+  r.offset = s.offset;
+
+  r.timer.start("spectrum");
+  const SpectrumResult spec = analyze_spectrum(m, opt.threads);
+  r.psd = spec.psd;
+  r.moments = spec.moments;
+  r.nyquist = spec.nyquist;
+  r.rms_slope_spectral = std::sqrt(2 * r.moments.m2);
+
+  r.timer.start("psd fit");
+  r.fit = fit_self_affine(r.psd, r.nyquist, r.profile);
+
+  r.timer.start("height statistics");
+  const HeightStats hs = height_stats(m);
+  r.h0 = hs.sq;
+  r.sa = hs.sa;
+  r.ssk = hs.ssk;
+  r.sku = hs.sku;
+  r.rms_slope_fd = rms_slope_finite_difference(m);
+
+  const double alpha = r.moments.alpha();
+  if (!r.profile) {
+    r.timer.start("summits");
+    SummitStats ss = find_summits(m, r.h0);
+    r.summit_count = ss.count;
+    r.summit_density = ss.density;
+    if (ss.count > 0) {
+      r.summit_mean = ss.mean;
+      r.summit_var = ss.variance;
+    }
+    r.nayak_density = nayak_summit_density(r.moments.m2, r.moments.m4);
+    if (alpha > 1.5) {
+      const auto nm = nayak_summit_moments(alpha);
+      const auto gw = greenwood_summit_moments(alpha);
+      r.nayak_mean = nm.mean;
+      r.nayak_var = nm.variance;
+      r.greenwood_mean = gw.mean;
+      r.greenwood_var = gw.variance;
+      if (ss.count > 0) r.summit_ks = ks_distance_to_nayak(ss.xi, alpha);
+    }
+    r.summit_xi = std::move(ss.xi);
+  }
+
+  r.timer.start("mpd");
+  r.mpd = mpd_of_map(m, s.dropout, opt.mpd);
+
+  r.timer.start("analytic");
+  r.kappa_persson = kappa_persson();
+  r.kappa_bgt = kappa_bgt();
+  for (double ss : opt.sigma_stars) r.persson_area.emplace_back(ss, persson_area_fraction(ss));
+
+  if (s.synthesis) {
+    r.synthesis = s.synthesis;
+    if (opt.expected_mpd) {
+      r.timer.start("expected mpd");
+      ExpectedMpdOptions eo;
+      eo.mpd = opt.mpd;
+      r.expected_mpd = expected_mpd(continuous_psd(*s.synthesis), m.dx, eo);
+    }
+    r.timer.start("prescribed");
+    r.prescribed = prescribed_figures(*s.synthesis, r.expected_mpd);
+  }
+  r.timer.stop();
+  return r;
+}
+
+nlohmann::json AnalysisReport::to_json() const {
+  using nlohmann::json;
+  json j;
+  j["nx"] = nx;
+  j["ny"] = ny;
+  j["dx"] = dx;
+  j["dy"] = dy;
+  j["h0"] = h0;
+  j["sa"] = sa;
+  j["ssk"] = ssk;
+  j["sku"] = sku;
+  j["rms_slope_spectral"] = rms_slope_spectral;
+  j["rms_slope_fd"] = rms_slope_fd;
+  j["m0"] = moments.m0;
+  j["m2"] = moments.m2;
+  j["m4"] = moments.m4;
+  j["alpha"] = num_json(moments.alpha());
+  j["hurst_fit"] = fit.ok ? json(fit.hurst) : json(nullptr);
+  j["q0_fit"] = fit.ok ? json(fit.q0) : json(nullptr);
+  j["plateau_fit"] = fit.ok ? json(fit.plateau_k) : json(nullptr);
+  j["summit_density"] = opt_json(summit_density);
+  j["summit_mean"] = opt_json(summit_mean);
+  j["summit_var"] = opt_json(summit_var);
+  j["mpd"] = num_json(mpd.mpd);
+  j["mpd_std"] = num_json(mpd.mpd_std);
+  j["etd"] = num_json(estimated_texture_depth(mpd.mpd));
+  j["kappa_persson"] = kappa_persson;
+  j["kappa_bgt"] = kappa_bgt;
+
+  j["input"] = {{"source", source},   {"format", format},  {"kind", profile ? "profile" : "map"},
+                {"periodic", periodic}, {"lx", nx * dx},     {"ly", profile ? 0.0 : ny * dy},
+                {"dropouts", dropouts}, {"tilt_x", tilt_x}, {"tilt_y", tilt_y}, {"offset", offset}};
+  j["psd_fit"] = {{"ok", fit.ok},       {"beta", fit.beta},   {"r2", fit.r2},       {"rms_log10", fit.rms_log10},
+                  {"q_min", fit.q_min}, {"q_max", fit.q_max}, {"bins", fit.bins},   {"note", fit.note},
+                  {"nyquist", nyquist}};
+  if (!profile) {
+    j["summits"] = {{"count", summit_count ? json(*summit_count) : json(nullptr)},
+                    {"ks_distance", opt_json(summit_ks)},
+                    {"nayak_density", opt_json(nayak_density)},
+                    {"nayak_mean", opt_json(nayak_mean)},
+                    {"nayak_var", opt_json(nayak_var)},
+                    {"eq45_mean", opt_json(greenwood_mean)},
+                    {"eq45_var", opt_json(greenwood_var)}};
+  } else {
+    j["summits"] = nullptr;
+  }
+  j["mpd_detail"] = {{"profiles", mpd.profiles},
+                     {"segments", mpd.segments},
+                     {"valid_segments", mpd.valid_segments},
+                     {"spikes", mpd.spikes},
+                     {"standard_baseline", mpd.standard_baseline},
+                     {"baseline", mpd.baseline_used},
+                     {"lowpass_applied", mpd.lowpass_applied},
+                     {"note", mpd.note}};
+  json pa = json::array();
+  for (const auto& [s, a] : persson_area) pa.push_back({{"sigma_star", s}, {"area_fraction", a}});
+  j["persson_area"] = pa;
+  if (synthesis) {
+    const auto& p = prescribed;
+    j["prescribed"] = {{"h0", opt_json(p.h0)},
+                       {"rms_slope_spectral", opt_json(p.rms_slope_spectral)},
+                       {"m0", opt_json(p.m0)},
+                       {"m2", opt_json(p.m2)},
+                       {"m4", opt_json(p.m4)},
+                       {"alpha", opt_json(p.alpha)},
+                       {"hurst_fit", opt_json(p.hurst)},
+                       {"q0_fit", opt_json(p.q0)},
+                       {"plateau_fit", opt_json(p.plateau)},
+                       {"summit_density", opt_json(p.summit_density)},
+                       {"summit_mean", opt_json(p.summit_mean)},
+                       {"summit_var", opt_json(p.summit_var)},
+                       {"mpd", opt_json(p.mpd)},
+                       {"mpd_std", opt_json(p.mpd_std)},
+                       {"etd", opt_json(p.etd)},
+                       {"kappa_persson", kappa_persson},
+                       {"kappa_bgt", kappa_bgt}};
+    j["synthesis"] = {{"h0", synthesis->psd.h0},
+                      {"hurst", synthesis->psd.hurst},
+                      {"qL", synthesis->psd.qL},
+                      {"q0", synthesis->psd.q0},
+                      {"q1", synthesis->psd.q1},
+                      {"q1_cut", synthesis->psd.q1_cut},
+                      {"plateau_k", synthesis->psd.k},
+                      {"plateau_k_eq44", synthesis->k_eq44},
+                      {"h0_eq44_on_lattice", synthesis->h0_eq44_on_lattice},
+                      {"eq44_h0_error", synthesis->h0_eq44_on_lattice / synthesis->psd.h0 - 1},
+                      {"seed", synthesis->seed},
+                      {"oversample", synthesis->oversample}};
+    if (expected_mpd)
+      j["expected_mpd"] = {{"mpd", num_json(expected_mpd->mpd)},
+                           {"mpd_std", num_json(expected_mpd->mpd_std)},
+                           {"std_error", num_json(expected_mpd->std_error)},
+                           {"segments", expected_mpd->segments},
+                           {"spacing", expected_mpd->spacing},
+                           {"assumption", expected_mpd->assumption}};
+  }
+  j["timings"] = timer.to_json();
+  return j;
+}
+
+void write_analysis_file(const std::string& path, const AnalysisReport& r, const Provenance& prov) {
+  Hdf5Writer w(path);
+  const auto summary = r.to_json();
+  w.create_group("/psd");
+  w.write_vector("/psd/q", r.psd.q);
+  w.write_vector("/psd/C", r.psd.C);
+  w.write_vector("/psd/count", r.psd.count);
+  w.write_attr("/psd", "q_unit", std::string("1/m"));
+  w.write_attr("/psd", "C_unit", std::string(r.profile ? "m^3" : "m^4"));
+  if (!r.profile) {
+    w.create_group("/summits");
+    w.write_vector("/summits/xi", r.summit_xi);
+  }
+  for (const auto& [key, value] : summary.items())
+    if (value.is_number()) w.write_attr("/", key, value.get<double>());
+  w.write_attr("/", "summary", summary.dump());
+  w.write_attr("/", "provenance", prov.to_json().dump());
+  w.commit();
+}
+
+}  // namespace wr

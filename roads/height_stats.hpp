@@ -1,0 +1,23 @@
+#pragma once
+// Areal height parameters (ISO 25178 names) and the finite-difference rms slope.
+#include "lib/core/height_map.hpp"
+
+namespace wr {
+
+struct HeightStats {
+  double sq = 0;   // m, rms height h0 about the mean
+  double sa = 0;   // m, mean absolute height
+  double ssk = 0;  // skewness
+  double sku = 0;  // kurtosis (3 for a Gaussian)
+  double mean = 0; // m (zero after mean-plane removal)
+};
+
+HeightStats height_stats(const HeightMap& map);
+
+// rms of |grad h| from forward differences (h[i+1]-h[i])/dx along x and y: the slope of the
+// piecewise-linear (triangulated) obstacle a contact solver meets. Wraps around on periodic maps;
+// otherwise uses the interior differences only. For a profile: sqrt(2) times the rms of the
+// profile slope, i.e. the surface rms slope assuming isotropy (comparable with sqrt(2 m2)).
+double rms_slope_finite_difference(const HeightMap& map);
+
+}  // namespace wr

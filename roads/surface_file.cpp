@@ -1,0 +1,38 @@
+#include "roads/surface_file.hpp"
+
+#include "lib/io/hdf5_file.hpp"
+
+namespace wr {
+
+void write_surface_file(const std::string& path, const HeightMap& map,
+                        const std::optional<SynthesisRecord>& synthesis, const nlohmann::json& provenance) {
+  Hdf5Writer w(path);
+  const std::string ds = map.is_profile() ? "/profile" : "/height";
+  if (map.is_profile())
+    w.write_vector(ds, map.h);
+  else
+    w.write_matrix(ds, map.h.data(), map.ny, map.nx);
+  w.write_attr(ds, "dx", map.dx);
+  w.write_attr(ds, "dy", map.dy);
+  w.write_attr(ds, "unit", std::string("m"));
+  w.write_attr(ds, "periodic", static_cast<std::int64_t>(map.periodic ? 1 : 0));
+  if (synthesis) {
+    const auto& s = *synthesis;
+    w.create_group("/synthesis");
+    w.write_attr("/synthesis", "h0", s.psd.h0);
+    w.write_attr("/synthesis", "hurst", s.psd.hurst);
+    w.write_attr("/synthesis", "qL", s.psd.qL);
+    w.write_attr("/synthesis", "q0", s.psd.q0);
+    w.write_attr("/synthesis", "q1", s.psd.q1);
+    w.write_attr("/synthesis", "q1_cut", s.psd.q1_cut);
+    w.write_attr("/synthesis", "plateau_k", s.psd.k);
+    w.write_attr("/synthesis", "plateau_k_eq44", s.k_eq44);
+    w.write_attr("/synthesis", "h0_eq44_on_lattice", s.h0_eq44_on_lattice);
+    w.write_attr("/synthesis", "seed", static_cast<std::int64_t>(s.seed));
+    w.write_attr("/synthesis", "oversample", static_cast<std::int64_t>(s.oversample));
+  }
+  w.write_attr("/", "provenance", provenance.dump());
+  w.commit();
+}
+
+}  // namespace wr

@@ -1,0 +1,320 @@
+#include "roads/surface_import.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "lib/core/errors.hpp"
+#include "lib/core/memory_guard.hpp"
+#include "lib/io/hdf5_file.hpp"
+
+namespace wr {
+namespace {
+
+// Working copies the analysis holds besides the map (FFT buffers, sorted copies, profiles).
+constexpr double kAnalysisCopies = 6.0;
+
+std::string num(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+void check_spacing(double d, const std::string& name, const std::string& source) {
+  if (!std::isfinite(d) || !(d > 0)) throw InputError(source, name + " must be a positive spacing in m (got " + num(d) + ")");
+}
+
+void check_size(const HeightMap& m, const std::string& source) {
+  if (m.is_profile()) {
+    if (m.nx < 8) throw InputError(source, "a profile needs at least 8 samples (got " + std::to_string(m.nx) + ")");
+  } else if (m.nx < 2 || m.ny < 2) {
+    throw InputError(source, "a " + std::to_string(m.ny) + "x" + std::to_string(m.nx) +
+                                 " map has no texture to analyze; a map needs at least 2x2 samples");
+  }
+}
+
+std::optional<SynthesisRecord> read_synthesis(const Hdf5Reader& f) {
+  if (!f.has_group("/synthesis")) return std::nullopt;
+  auto get = [&](const char* name) {
+    auto v = f.attr_double("/synthesis", name);
+    if (!v) throw InputError(f.path(), std::string("/synthesis lacks attribute ") + name);
+    return *v;
+  };
+  SynthesisRecord s;
+  s.psd.h0 = get("h0");
+  s.psd.hurst = get("hurst");
+  s.psd.qL = get("qL");
+  s.psd.q0 = get("q0");
+  s.psd.q1 = get("q1");
+  s.psd.q1_cut = get("q1_cut");
+  s.psd.k = get("plateau_k");
+  s.k_eq44 = get("plateau_k_eq44");
+  s.h0_eq44_on_lattice = get("h0_eq44_on_lattice");
+  s.seed = static_cast<std::uint64_t>(get("seed"));
+  s.oversample = static_cast<int>(get("oversample"));
+  return s;
+}
+
+LoadedSurface load_hdf5(const std::string& path) {
+  Hdf5Reader f(path);
+  LoadedSurface out;
+  out.source = path;
+  out.format = "hdf5";
+  std::string ds;
+  if (f.has_dataset("/height"))
+    ds = "/height";
+  else if (f.has_dataset("/profile"))
+    ds = "/profile";
+  else
+    throw InputError(path, "no /height (2-D map) or /profile (1-D line) dataset");
+  const auto dims = f.dims(ds);
+  const bool profile = ds == "/profile";
+  if (!profile && dims.size() != 2)
+    throw InputError(path, "/height must be 2-D (rows = y), got rank " + std::to_string(dims.size()) +
+                               (dims.size() == 1 ? " (a 1-D line belongs in /profile)" : ""));
+  if (profile && dims.size() != 1)
+    throw InputError(path, "/profile must be 1-D, got rank " + std::to_string(dims.size()));
+  const auto dx = f.attr_double(ds, "dx");
+  if (!dx) throw InputError(path, ds + " has no dx attribute (sample spacing in m)");
+  check_spacing(*dx, "dx", path);
+  double dy = *dx;
+  if (!profile) {
+    if (auto v = f.attr_double(ds, "dy")) dy = *v;
+    check_spacing(dy, "dy", path);
+  }
+  const std::size_t ny = profile ? 1 : dims[0];
+  const std::size_t nx = profile ? dims[0] : dims[1];
+  const std::size_t cells = checked_cells(nx, ny, path);
+  require_memory(cells, sizeof(double), kAnalysisCopies, path,
+                 "analyzing a " + std::to_string(ny) + "x" + std::to_string(nx) + " map");
+  HeightMap m;
+  m.nx = nx;
+  m.ny = ny;
+  m.dx = *dx;
+  m.dy = dy;
+  m.kind = profile ? HeightMap::Kind::profile : HeightMap::Kind::map;
+  check_size(m, path);
+  const double scale = unit_scale(f.attr_string(ds, "unit").value_or("m"), path);
+  m.periodic = f.attr_double(ds, "periodic").value_or(0.0) != 0.0;
+  m.h = f.read_doubles(ds, cells);
+  if (scale != 1.0)
+    for (double& v : m.h) v *= scale;
+  out.map = std::move(m);
+  out.synthesis = read_synthesis(f);
+  return out;
+}
+
+LoadedSurface load_text(const std::string& path, const TextGridOptions& opt) {
+  if (!opt.dx) throw InputError(path, "not an HDF5 file; to read it as a plain-text grid give --dx (m)");
+  check_spacing(*opt.dx, "--dx", path);
+  const double dy = opt.dy.value_or(*opt.dx);
+  check_spacing(dy, "--dy", path);
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open");
+  const auto file_bytes = std::filesystem::file_size(path);
+  require_memory(file_bytes / 2 + 1, sizeof(double), kAnalysisCopies, path, "reading this text grid");
+  std::vector<double> values;
+  std::size_t cols = 0, rows = 0, lineno = 0;
+  std::string line;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    for (char& c : line)
+      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+    std::istringstream ls(line);
+    std::string tok;
+    std::size_t n = 0;
+    while (ls >> tok) {
+      char* end = nullptr;
+      const double v = std::strtod(tok.c_str(), &end);
+      if (end == tok.c_str() || *end != '\0')
+        throw InputError(path, "line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
+      values.push_back(v);
+      ++n;
+    }
+    if (rows == 0)
+      cols = n;
+    else if (n != cols)
+      throw InputError(path, "line " + std::to_string(lineno) + " has " + std::to_string(n) +
+                                 " values, the first row has " + std::to_string(cols));
+    ++rows;
+  }
+  if (rows == 0) throw InputError(path, "no numbers found (empty file?)");
+  LoadedSurface out;
+  out.source = path;
+  out.format = "text";
+  HeightMap m;
+  if (rows == 1 || cols == 1) {  // one line of samples: a profile
+    m.kind = HeightMap::Kind::profile;
+    m.nx = values.size();
+    m.ny = 1;
+    m.dx = m.dy = *opt.dx;
+  } else {
+    m.nx = cols;
+    m.ny = rows;
+    m.dx = *opt.dx;
+    m.dy = dy;
+  }
+  m.periodic = opt.periodic;
+  check_size(m, path);
+  for (double& v : values) v *= opt.unit_scale;
+  m.h = std::move(values);
+  out.map = std::move(m);
+  return out;
+}
+
+bool looks_like_hdf5(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char sig[8] = {};
+  in.read(sig, 8);
+  static const char kSig[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+  return in.gcount() == 8 && std::equal(sig, sig + 8, kSig);
+}
+
+}  // namespace
+
+double unit_scale(const std::string& unit, const std::string& source) {
+  if (unit == "m" || unit.empty()) return 1.0;
+  if (unit == "mm") return 1e-3;
+  if (unit == "um" || unit == "µm" || unit == "micron") return 1e-6;
+  if (unit == "nm") return 1e-9;
+  throw InputError(source, "unknown height unit '" + unit + "' (expected m, mm, um or nm)");
+}
+
+std::size_t fill_dropouts(HeightMap& m) {
+  std::size_t missing = 0;
+  for (double v : m.h) missing += !std::isfinite(v);
+  if (missing == 0) return 0;
+  if (missing == m.h.size()) return missing;  // caller reports "all dropouts"
+  if (m.is_profile()) {
+    std::vector<std::size_t> valid;
+    for (std::size_t i = 0; i < m.nx; ++i)
+      if (std::isfinite(m.h[i])) valid.push_back(i);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < m.nx; ++i) {
+      if (std::isfinite(m.h[i])) continue;
+      while (k + 1 < valid.size() && valid[k + 1] < i) ++k;
+      if (i < valid.front())
+        m.h[i] = m.h[valid.front()];
+      else if (i > valid.back())
+        m.h[i] = m.h[valid.back()];
+      else {
+        const std::size_t a = valid[k], b = valid[k + 1];
+        const double t = double(i - a) / double(b - a);
+        m.h[i] = (1 - t) * m.h[a] + t * m.h[b];
+      }
+    }
+    return missing;
+  }
+  std::vector<double> next = m.h;
+  std::size_t left = missing;
+  while (left > 0) {
+    std::size_t filled = 0;
+    for (std::size_t iy = 0; iy < m.ny; ++iy) {
+      for (std::size_t ix = 0; ix < m.nx; ++ix) {
+        if (std::isfinite(m(ix, iy))) continue;
+        double s = 0;
+        int n = 0;
+        auto take = [&](long jx, long jy) {
+          if (m.periodic) {
+            jx = (jx + long(m.nx)) % long(m.nx);
+            jy = (jy + long(m.ny)) % long(m.ny);
+          } else if (jx < 0 || jy < 0 || jx >= long(m.nx) || jy >= long(m.ny)) {
+            return;
+          }
+          const double v = m(std::size_t(jx), std::size_t(jy));
+          if (std::isfinite(v)) {
+            s += v;
+            ++n;
+          }
+        };
+        take(long(ix) - 1, long(iy));
+        take(long(ix) + 1, long(iy));
+        take(long(ix), long(iy) - 1);
+        take(long(ix), long(iy) + 1);
+        if (n > 0) {
+          next[iy * m.nx + ix] = s / n;
+          ++filled;
+        }
+      }
+    }
+    m.h = next;
+    left -= filled;
+  }
+  return missing;
+}
+
+MeanPlane remove_mean_plane(HeightMap& m, const std::vector<unsigned char>& dropout) {
+  // Centred coordinates decouple the offset from the slopes; solve the 3x3 normal equations.
+  const double cx = 0.5 * (m.nx - 1), cy = 0.5 * (m.ny - 1);
+  double sxx = 0, syy = 0, sxy = 0, sx = 0, sy = 0, n = 0, sz = 0, sxz = 0, syz = 0;
+  for (std::size_t iy = 0; iy < m.ny; ++iy)
+    for (std::size_t ix = 0; ix < m.nx; ++ix) {
+      if (dropout[iy * m.nx + ix]) continue;
+      const double x = (ix - cx) * m.dx, y = (iy - cy) * m.dy, z = m(ix, iy);
+      n += 1;
+      sx += x;
+      sy += y;
+      sxx += x * x;
+      syy += y * y;
+      sxy += x * y;
+      sz += z;
+      sxz += x * z;
+      syz += y * z;
+    }
+  // Normal equations [n sx sy; sx sxx sxy; sy sxy syy] [a bx by] = [sz sxz syz]
+  double A[3][4] = {{n, sx, sy, sz}, {sx, sxx, sxy, sxz}, {sy, sxy, syy, syz}};
+  // A periodic surface has no tilt (a trend would break the periodicity), and a least-squares
+  // plane through one period of it would only remove genuine long-wavelength texture:
+  // remove its mean level alone.
+  const int dim = m.periodic ? 1 : (m.is_profile() ? 2 : 3);  // a profile has no y slope
+  for (int c = 0; c < dim; ++c) {
+    int piv = c;
+    for (int r = c + 1; r < dim; ++r)
+      if (std::abs(A[r][c]) > std::abs(A[piv][c])) piv = r;
+    std::swap(A[c], A[piv]);
+    for (int r = 0; r < dim; ++r) {
+      if (r == c || A[c][c] == 0) continue;
+      const double f = A[r][c] / A[c][c];
+      for (int k = c; k < 4; ++k) A[r][k] -= f * A[c][k];
+    }
+  }
+  MeanPlane p{A[0][0] != 0 ? A[0][3] / A[0][0] : 0, dim >= 2 && A[1][1] != 0 ? A[1][3] / A[1][1] : 0,
+              dim == 3 && A[2][2] != 0 ? A[2][3] / A[2][2] : 0};
+  for (std::size_t iy = 0; iy < m.ny; ++iy)
+    for (std::size_t ix = 0; ix < m.nx; ++ix)
+      m(ix, iy) -= p.offset + p.tilt_x * (ix - cx) * m.dx + p.tilt_y * (iy - cy) * m.dy;
+  return p;
+}
+
+LoadedSurface load_surface(const std::string& path, const TextGridOptions& text) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a file");
+  const std::string ext = std::filesystem::path(path).extension().string();
+  LoadedSurface s;
+  if (looks_like_hdf5(path))
+    s = load_hdf5(path);
+  else if (ext == ".h5" || ext == ".hdf5" || ext == ".he5" || !text.dx)
+    throw InputError(path, text.dx ? "not an HDF5 file" : "not an HDF5 file (for a plain-text grid give --dx)");
+  else
+    s = load_text(path, text);
+
+  HeightMap& m = s.map;
+  s.dropout.assign(m.h.size(), 0);
+  for (std::size_t i = 0; i < m.h.size(); ++i) s.dropout[i] = !std::isfinite(m.h[i]);
+  s.dropouts = static_cast<std::size_t>(std::count(s.dropout.begin(), s.dropout.end(), 1));
+  if (s.dropouts == m.h.size()) throw InputError(path, "every sample is a dropout (NaN); nothing to analyze");
+  fill_dropouts(m);
+  const MeanPlane p = remove_mean_plane(m, s.dropout);
+  s.offset = p.offset;
+  s.tilt_x = p.tilt_x;
+  s.tilt_y = p.tilt_y;
+  return s;
+}
+
+}  // namespace wr

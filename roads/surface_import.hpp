@@ -1,0 +1,59 @@
+#pragma once
+// Loading a surface for analysis: HDF5 (/height or /profile, design.md) or a plain-text grid.
+//
+// After reading, non-finite samples (NaN, Inf) are dropouts. They are counted and filled:
+//  - maps: layer by layer from the edge of each hole inward, every dropout with at least one
+//    valid 4-neighbour taking the mean of those neighbours (all cells of a layer are updated
+//    from the previous layer, so the result does not depend on scan order); neighbours wrap
+//    around when the map is periodic;
+//  - profiles: linear interpolation between the nearest valid samples, constant beyond the ends.
+// The mean plane (least squares a + bx x + by y over the valid samples) is then removed and
+// its slopes reported; a periodic surface has only its mean level removed (a tilt would break
+// the periodicity, so the fitted "tilt" of one period is texture, not trend). The dropout mask is kept so MPD can apply ISO 13473-1's own rules.
+//
+// Errors (InputError naming the file): missing file, not HDF5 (and not a text grid), no
+// /height or /profile, wrong rank, missing or non-positive dx, a 1x1 map or a profile under
+// 8 samples, every sample a dropout, a size that does not fit in memory.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lib/core/height_map.hpp"
+#include "roads/surface_file.hpp"
+
+namespace wr {
+
+struct TextGridOptions {
+  std::optional<double> dx;  // m; required for text grids
+  std::optional<double> dy;  // m; default dx
+  double unit_scale = 1.0;   // metres per height unit of the file
+  bool periodic = false;     // measured data is not periodic unless said so
+};
+
+struct LoadedSurface {
+  HeightMap map;                       // dropouts filled, mean plane removed
+  std::vector<unsigned char> dropout;  // 1 where the input had no valid sample
+  std::size_t dropouts = 0;
+  double tilt_x = 0, tilt_y = 0;       // removed mean-plane slopes, m/m
+  double offset = 0;                   // removed mean level, m
+  std::string source;                  // file path
+  std::string format;                  // "hdf5" or "text"
+  std::optional<SynthesisRecord> synthesis;
+};
+
+LoadedSurface load_surface(const std::string& path, const TextGridOptions& text = {});
+
+// Fills dropouts of `map` in place by the rule above; returns how many were filled.
+std::size_t fill_dropouts(HeightMap& map);
+
+// Removes the least-squares mean plane over samples with dropout[i] == 0; returns
+// {offset, tilt_x, tilt_y}.
+struct MeanPlane {
+  double offset, tilt_x, tilt_y;
+};
+MeanPlane remove_mean_plane(HeightMap& map, const std::vector<unsigned char>& dropout);
+
+// Metres per unit for a unit name ("m", "mm", "um", "µm", "nm"); throws InputError.
+double unit_scale(const std::string& unit, const std::string& source);
+
+}  // namespace wr

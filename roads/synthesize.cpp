@@ -1,0 +1,152 @@
+#include "roads/synthesize.hpp"
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <numbers>
+#include <random>
+
+#include "lib/core/errors.hpp"
+#include "lib/core/fft.hpp"
+#include "lib/core/memory_guard.hpp"
+
+namespace wr {
+namespace {
+
+std::string fmt(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+// Signed lattice index of FFT bin i on an n-point axis.
+long signed_index(std::size_t i, std::size_t n) {
+  return i <= n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n);
+}
+
+double uniform_phase(std::mt19937_64& rng) {
+  // 53 random bits -> [0, 1): independent of the standard library's distribution code.
+  return 2 * std::numbers::pi * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+struct Grid {
+  std::size_t nx, ny;
+  double dx, dy, qLx, qLy, qL;
+};
+
+Grid make_grid(const SynthParams& p) {
+  Grid g;
+  g.nx = p.nx * p.oversample;
+  g.ny = p.ny * p.oversample;
+  g.dx = g.dy = p.dx / p.oversample;
+  g.qLx = 2 * std::numbers::pi / (g.nx * g.dx);
+  g.qLy = 2 * std::numbers::pi / (g.ny * g.dy);
+  g.qL = std::min(g.qLx, g.qLy);
+  return g;
+}
+
+double nyquist(const Grid& g) { return std::numbers::pi / std::max(g.dx, g.dy); }
+
+}  // namespace
+
+void validate(const SynthParams& p) {
+  if (p.nx < 2 || p.ny < 2) throw InputError("--size", "the grid needs at least 2x2 points");
+  if (!(p.dx > 0) || !std::isfinite(p.dx)) throw InputError("--dx", "must be a positive length in m");
+  if (!(p.h0 > 0) || !std::isfinite(p.h0)) throw InputError("--h0", "must be a positive rms height in m");
+  if (!(p.hurst > 0 && p.hurst < 1)) throw InputError("--hurst", "must lie in (0, 1)");
+  if (!(p.q1_fraction > 0 && p.q1_fraction <= 1)) throw InputError("--q1-fraction", "must lie in (0, 1]");
+  if (p.oversample < 1 || p.oversample > 64) throw InputError("--oversample", "must be an integer in 1..64");
+  const Grid g = make_grid(p);
+  if (!(p.q0_ratio >= 1)) throw InputError("--q0-ratio", "q0/qL must be >= 1");
+  checked_cells(g.nx, g.ny, "--size");
+  // map + FFT real buffer + half spectrum (complex, ~ one more map)
+  require_memory(g.nx * g.ny, sizeof(double), 3.2, "--size",
+                 "a " + std::to_string(g.nx) + "x" + std::to_string(g.ny) + " surface");
+  const double qn = nyquist(g);
+  const double q0 = p.q0_ratio * g.qL;
+  if (p.q1) {
+    const double q1 = *p.q1;
+    if (!(q1 > 0) || !std::isfinite(q1)) throw InputError("--q1", "must be a positive wavenumber in 1/m");
+    if (q1 > qn * (1 + 1e-9)) {
+      const int s = static_cast<int>(std::ceil(q1 / (std::numbers::pi / p.dx) - 1e-9));
+      throw InputError("--q1", "q1 = " + fmt(q1) + " 1/m is above the grid's Nyquist wavenumber pi/dx = " +
+                                   fmt(qn) + " 1/m and cannot be represented on this grid without aliasing;"
+                                   " add --oversample " + std::to_string(s) + " (generates " +
+                                   std::to_string(p.nx * s) + "x" + std::to_string(p.ny * s) +
+                                   " points at dx = " + fmt(p.dx / s) + " m) or lower --q1");
+    }
+    if (q1 <= q0) throw InputError("--q1", "q1 must exceed the roll-off q0 = " + fmt(q0) + " 1/m");
+  } else if (qn <= q0) {
+    throw InputError("--q0-ratio", "the roll-off q0 = " + fmt(q0) + " 1/m is at or above Nyquist " + fmt(qn));
+  }
+}
+
+SynthResult synthesize(const SynthParams& p) {
+  validate(p);
+  const Grid g = make_grid(p);
+  const double q1 = p.q1 ? *p.q1 : nyquist(g);
+  const double q0 = p.q0_ratio * g.qL;
+
+  SynthResult r;
+  SelfAffinePsd full = SelfAffinePsd::from_eq44(p.h0, p.hurst, g.qL, q0, q1, 1.0);
+  r.k_eq44 = full.k;
+  SelfAffinePsd cut = full;
+  cut.q1_cut = q1 * p.q1_fraction;
+
+  // Amplitudes with the eq. 4.4 plateau first; the lattice power of the uncut spectrum is
+  // summed on the way (interior half-plane columns stand for q and -q) and fixes the rescale.
+  RealFft2d fft(g.nx, g.ny, p.threads);
+  std::complex<double>* spec = fft.spectrum();
+  const std::size_t nxh = fft.nxh();
+  std::mt19937_64 rng(p.seed);
+  const double cell = g.qLx * g.qLy;
+  double power_eq44 = 0;
+  for (std::size_t iy = 0; iy < g.ny; ++iy) {
+    const double qy = signed_index(iy, g.ny) * g.qLy;
+    for (std::size_t ix = 0; ix < nxh; ++ix) {
+      const double qx = signed_index(ix, g.nx) * g.qLx;
+      const double phase = uniform_phase(rng);
+      const double q = std::sqrt(qx * qx + qy * qy);
+      const double c_full = full(q);
+      const double weight = (ix == 0 || (g.nx % 2 == 0 && ix == g.nx / 2)) ? 1.0 : 2.0;
+      power_eq44 += weight * c_full * cell;
+      const double c = q <= cut.q1_cut * (1 + 1e-12) ? c_full : 0.0;
+      spec[iy * nxh + ix] = std::polar(std::sqrt(c * cell), phase);
+    }
+  }
+  r.h0_eq44_on_lattice = std::sqrt(power_eq44);
+  const double rescale = p.h0 / r.h0_eq44_on_lattice;
+  for (std::size_t i = 0; i < g.ny * nxh; ++i) spec[i] *= rescale;
+  r.psd = cut;
+  r.psd.k = full.k * rescale * rescale;
+
+  // Columns ix = 0 and ix = nx/2 (even nx) hold both q and -q: make them conjugate pairs, and
+  // the self-conjugate points real (sign from the phase), so that c2r sees an exact Hermitian
+  // spectrum and the lattice power stays sum |B_q|^2.
+  const std::size_t edge_cols[2] = {0, g.nx % 2 == 0 ? g.nx / 2 : 0};
+  for (int c = 0; c < (g.nx % 2 == 0 ? 2 : 1); ++c) {
+    const std::size_t ix = edge_cols[c];
+    for (std::size_t iy = 0; iy < g.ny; ++iy) {
+      const std::size_t jy = (g.ny - iy) % g.ny;
+      auto& a = spec[iy * nxh + ix];
+      if (jy == iy)
+        a = std::complex<double>(std::cos(std::arg(a)) >= 0 ? std::abs(a) : -std::abs(a), 0.0);
+      else if (iy < jy)
+        spec[jy * nxh + ix] = std::conj(a);
+    }
+  }
+  spec[0] = 0.0;  // mean plane at zero
+  std::size_t active = 0;
+  for (std::size_t iy = 0; iy < g.ny; ++iy)
+    for (std::size_t ix = 0; ix < nxh; ++ix)
+      if (spec[iy * nxh + ix] != 0.0) active += (ix == 0 || (g.nx % 2 == 0 && ix == g.nx / 2)) ? 1 : 2;
+  r.active_waves = active;
+
+  fft.backward();
+  r.map = HeightMap(g.nx, g.ny, g.dx, g.dy);
+  r.map.periodic = true;
+  std::copy(fft.real(), fft.real() + g.nx * g.ny, r.map.h.begin());
+  return r;
+}
+
+}  // namespace wr

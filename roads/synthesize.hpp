@@ -1,0 +1,53 @@
+#pragma once
+// Random-phase synthesis of a periodic, isotropic, self-affine surface (thesis sec. 4.1).
+//
+// Each lattice wave-vector q (multiples of 2 pi / Lx, 2 pi / Ly) with qL <= |q| <= q1_cut gets
+// the deterministic amplitude |B_q| = sqrt(C(q) qLx qLy) (eq. 4.2) and a uniform random phase;
+// an inverse real FFT (FFTW) sums the waves. The spectrum is Hermitian by construction so the
+// surface is real and periodic.
+//
+// Normalisation: eq. 4.4 makes the *continuous* integral of C equal h0^2; the lattice sum
+// differs from the integral (ring quantisation near qL, the discrete cut at q1), so the plateau
+// is rescaled to make the lattice sum over the uncut spectrum equal h0^2 exactly. The measured
+// h0 of the uncut surface therefore equals the prescribed one to rounding; how far eq. 4.4 alone
+// would land is reported in `h0_eq44_on_lattice`.
+//
+// Determinism: phases come from std::mt19937_64(seed) drawn in a fixed order over the whole
+// half spectrum (also where the amplitude is zero), and the FFT plan is FFTW_ESTIMATE, so the
+// same options give a bit-identical map, and changing h0 or the low-pass fraction changes the
+// amplitudes of the same waves only.
+#include <cstdint>
+#include <optional>
+
+#include "lib/core/height_map.hpp"
+#include "roads/self_affine_psd.hpp"
+
+namespace wr {
+
+struct SynthParams {
+  std::size_t nx = 300, ny = 300;  // grid points before oversampling
+  double dx = 1e-4;                // m, spacing before oversampling (dy = dx)
+  double h0 = 3e-4;                // m rms
+  double hurst = 0.7;
+  double q0_ratio = 5.0;           // q0 / qL
+  std::optional<double> q1;        // 1/m; default the (oversampled) grid's Nyquist pi/dx
+  double q1_fraction = 1.0;        // low-pass: keep q <= q1_fraction * q1 (dataset C)
+  int oversample = 1;              // generate on a grid S times finer (nx*S, dx/S)
+  std::uint64_t seed = 1;
+  int threads = 0;                 // FFT threads, 0 = hardware
+};
+
+struct SynthResult {
+  HeightMap map;                   // periodic, mean zero
+  SelfAffinePsd psd;               // the prescribed spectrum, with the lattice-normalised k
+  double k_eq44 = 0;               // plateau from eq. 4.4 alone, m^4
+  double h0_eq44_on_lattice = 0;   // m: rms height the lattice would give with k_eq44
+  std::size_t active_waves = 0;    // lattice wave-vectors with non-zero amplitude (full plane)
+};
+
+// Throws InputError("--option", ...) for invalid parameters, including a q1 above the grid's
+// Nyquist wavenumber (the message offers --oversample), and for grids that do not fit memory.
+void validate(const SynthParams& p);
+SynthResult synthesize(const SynthParams& p);
+
+}  // namespace wr

@@ -1,0 +1,25 @@
+#!/bin/sh
+# Installs the Debian packages wetroad builds against, only those that are missing.
+# Non-interactive; uses sudo when not root. Safe to run repeatedly.
+set -eu
+PACKAGES="cmake g++ make pkg-config libfftw3-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin \
+libcli11-dev nlohmann-json3-dev libgtest-dev"
+
+missing=""
+for p in $PACKAGES; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing="$missing $p"
+  fi
+done
+[ -z "$missing" ] && exit 0
+
+echo "wetroad: installing missing Debian packages:$missing"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "wetroad: error: need root or sudo to install:$missing" >&2; exit 2; fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -qq --no-install-recommends $missing
