@@ -1,0 +1,236 @@
+// End-to-end: the wetroad binary on good and bad input (exit codes, messages, no stray output).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code;
+  std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("wetroad-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  CliRun run(const std::string& args) const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    const std::string cmd = std::string(WETROAD_BIN) + " " + args + " >" + out + " 2>" + err;
+    const int status = std::system(cmd.c_str());
+    CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  static std::string slurp(const std::string& p) {
+    std::ifstream f(p);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  }
+
+  // Files in the scratch directory other than the inputs the test made.
+  std::size_t count_files() const {
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) n += e.is_regular_file();
+    return n;
+  }
+
+  // Writes an HDF5 file with a float64 dataset of the given shape (chunked and never written
+  // when `write` is false, so huge shapes cost nothing on disk) and optional dx.
+  void make_h5(const std::string& name, const std::string& dataset, std::vector<hsize_t> dims,
+               std::optional<double> dx, bool write = true, double fill = 1e-4) const {
+    const hid_t f = H5Fcreate(path(name).c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t space = H5Screate_simple(int(dims.size()), dims.data(), nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (!write) {
+      std::vector<hsize_t> chunk(dims.size(), 16);
+      H5Pset_chunk(dcpl, int(dims.size()), chunk.data());
+    }
+    const hid_t ds = H5Dcreate2(f, dataset.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    if (write) {
+      hsize_t n = 1;
+      for (auto d : dims) n *= d;
+      std::vector<double> v(n);
+      for (hsize_t i = 0; i < n; ++i) v[i] = std::isnan(fill) ? fill : fill * std::sin(0.37 * double(i));
+      H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    }
+    if (dx) {
+      const hid_t as = H5Screate(H5S_SCALAR);
+      const hid_t a = H5Acreate2(ds, "dx", H5T_IEEE_F64LE, as, H5P_DEFAULT, H5P_DEFAULT);
+      H5Awrite(a, H5T_NATIVE_DOUBLE, &*dx);
+      H5Aclose(a);
+      H5Sclose(as);
+    }
+    H5Dclose(ds);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+
+  // Bar 6: one line naming the file, exit code 2, no output file.
+  void expect_bad_input(const std::string& file, const std::string& fragment) {
+    const std::size_t before = count_files();
+    const CliRun r = run("analyze " + file + " --json " + path("out.json") + " --out " + path("out.h5"));
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+    EXPECT_EQ(count_files(), before) << "an output file appeared";
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpAndVersion) {
+  CliRun r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("synth"), std::string::npos);
+  EXPECT_NE(r.out.find("analyze"), std::string::npos);
+  r = run("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("wetroad"), std::string::npos);
+  r = run("synth --help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* opt : {"--size", "--dx", "--h0", "--hurst", "--q0-ratio", "--q1", "--q1-fraction", "--oversample", "--seed"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+  r = run("analyze --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("--json"), std::string::npos);
+}
+
+TEST_F(Cli, SynthThenAnalyzeWritesEveryDocumentedKey) {
+  const std::string s = path("s.h5"), j = path("a.json"), o = path("a.h5");
+  CliRun r = run("synth --size 128 --dx 1e-4 --h0 5e-4 --hurst 0.8 --seed 3 -o " + s);
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("analyze " + s + " --json " + j + " --out " + o);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("prescribed"), std::string::npos);
+  EXPECT_NE(r.out.find("non-standard baseline"), std::string::npos);
+  std::ifstream f(j);
+  const auto js = nlohmann::json::parse(f);
+  for (const char* key : {"nx", "ny", "dx", "dy", "h0", "sa", "ssk", "sku", "rms_slope_spectral", "rms_slope_fd", "m0",
+                          "m2", "m4", "alpha", "hurst_fit", "q0_fit", "plateau_fit", "summit_density", "summit_mean",
+                          "summit_var", "mpd", "mpd_std", "etd", "kappa_persson", "kappa_bgt"}) {
+    ASSERT_TRUE(js.contains(key)) << key;
+    EXPECT_TRUE(js[key].is_number()) << key;
+  }
+  ASSERT_TRUE(js.contains("prescribed"));
+  EXPECT_NEAR(js["prescribed"]["h0"].get<double>(), 5e-4, 1e-15);
+  EXPECT_NEAR(js["h0"].get<double>() / 5e-4, 1.0, 1e-9);
+  EXPECT_NEAR(js["prescribed"]["hurst_fit"].get<double>(), 0.8, 1e-15);
+  EXPECT_TRUE(js["prescribed"]["mpd"].is_number());
+  EXPECT_EQ(js["nx"].get<int>(), 128);
+  EXPECT_TRUE(fs::exists(o));
+}
+
+TEST_F(Cli, SynthIsBitIdenticalAcrossRuns) {
+  ASSERT_EQ(run("synth --size 64 --seed 9 -o " + path("a.h5")).code, 0);
+  ASSERT_EQ(run("synth --size 64 --seed 9 -o " + path("b.h5")).code, 0);
+  // Compare the height datasets through analyze's JSON would be indirect; read the raw maps.
+  auto read = [&](const std::string& p) {
+    const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, "/height", H5P_DEFAULT);
+    std::vector<double> v(64 * 64);
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Dclose(d);
+    H5Fclose(f);
+    return v;
+  };
+  EXPECT_EQ(read(path("a.h5")), read(path("b.h5")));
+}
+
+TEST_F(Cli, SynthRefusesQ1AboveNyquistAndSuggestsOversampling) {
+  const CliRun r = run("synth --size 100 --dx 1e-4 --q1 62831.85 -o " + path("s.h5"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--oversample 2"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("s.h5")));
+  EXPECT_EQ(run("synth --size 100 --dx 1e-4 --q1 62831.85 --oversample 2 -o " + path("s.h5")).code, 0);
+}
+
+TEST_F(Cli, SynthRefusesAGridThatDoesNotFitInMemory) {
+  const CliRun r = run("synth --size 4000000 -o " + path("s.h5"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("memory"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("s.h5")));
+}
+
+TEST_F(Cli, MissingFile) { expect_bad_input(path("nope.h5"), "no such file"); }
+
+TEST_F(Cli, NotHdf5) {
+  std::ofstream(path("text.h5")) << "this is not HDF5\n";
+  expect_bad_input(path("text.h5"), "not an HDF5 file");
+}
+
+TEST_F(Cli, NoHeightDataset) {
+  make_h5("other.h5", "/elevation", {4, 4}, 1e-4);
+  expect_bad_input(path("other.h5"), "no /height");
+}
+
+TEST_F(Cli, WrongRank) {
+  make_h5("rank3.h5", "/height", {3, 4, 5}, 1e-4);
+  expect_bad_input(path("rank3.h5"), "rank 3");
+  make_h5("rank1.h5", "/height", {40}, 1e-4);
+  expect_bad_input(path("rank1.h5"), "/profile");
+}
+
+TEST_F(Cli, NonPositiveSpacing) {
+  make_h5("dx0.h5", "/height", {8, 8}, 0.0);
+  expect_bad_input(path("dx0.h5"), "dx must be a positive");
+  make_h5("dxneg.h5", "/height", {8, 8}, -1e-4);
+  expect_bad_input(path("dxneg.h5"), "dx must be a positive");
+  make_h5("nodx.h5", "/height", {8, 8}, std::nullopt);
+  expect_bad_input(path("nodx.h5"), "no dx attribute");
+}
+
+TEST_F(Cli, AllNaN) {
+  make_h5("nan.h5", "/height", {8, 8}, 1e-4, true, NAN);
+  expect_bad_input(path("nan.h5"), "every sample is a dropout");
+}
+
+TEST_F(Cli, OneByOne) {
+  make_h5("one.h5", "/height", {1, 1}, 1e-4);
+  expect_bad_input(path("one.h5"), "at least 2x2");
+}
+
+TEST_F(Cli, DimensionThatDoesNotFitInMemory) {
+  make_h5("huge.h5", "/height", {1u << 20, 1u << 20}, 1e-4, false);  // 8 TiB declared, nothing stored
+  expect_bad_input(path("huge.h5"), "memory");
+}
+
+TEST_F(Cli, ProfileAndTextInputsWork) {
+  make_h5("prof.h5", "/profile", {4000}, 1e-4);
+  CliRun r = run("analyze " + path("prof.h5") + " --json " + path("p.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(path("p.json"));
+  const auto js = nlohmann::json::parse(f);
+  EXPECT_TRUE(js["summit_density"].is_null());
+  EXPECT_TRUE(js["mpd"].is_number());
+  std::ofstream(path("g.txt")) << "0 1 0 1\n1 0 1 0\n0 1 0 1\n";
+  r = run("analyze " + path("g.txt") + " --dx 1e-4 --unit mm");
+  EXPECT_EQ(r.code, 0) << r.err;
+  r = run("analyze " + path("g.txt"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--dx"), std::string::npos) << r.err;
+}
+
+}  // namespace

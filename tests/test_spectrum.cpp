@@ -1,0 +1,113 @@
+// Spectrum and moments against exact answers: sinusoids and Parseval.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "roads/height_stats.hpp"
+#include "roads/spectrum.hpp"
+
+namespace wr {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// a sin(kx x + ky y) on an n x n periodic grid of period L, with kx = 2 pi mx / L etc.
+HeightMap sinusoid(std::size_t n, double L, double a, int mx, int my) {
+  HeightMap m(n, n, L / n, L / n);
+  for (std::size_t iy = 0; iy < n; ++iy)
+    for (std::size_t ix = 0; ix < n; ++ix)
+      m(ix, iy) = a * std::sin(2 * kPi * (mx * double(ix) + my * double(iy)) / double(n));
+  return m;
+}
+
+// Bar 4: PSD peak at the right q; h0 = a / sqrt 2 and rms slope (2 pi a / lambda) / sqrt 2 to 1e-10.
+TEST(Spectrum, SinusoidAlongX) {
+  const double L = 0.03, a = 2e-4;
+  const int m = 7;
+  const HeightMap h = sinusoid(256, L, a, m, 0);
+  const double lambda = L / m, q = 2 * kPi / lambda;
+  const SpectrumResult s = analyze_spectrum(h);
+  EXPECT_NEAR(std::sqrt(s.moments.m0) / (a / std::sqrt(2.0)), 1.0, 1e-10);
+  EXPECT_NEAR(height_stats(h).sq / (a / std::sqrt(2.0)), 1.0, 1e-10);
+  EXPECT_NEAR(std::sqrt(2 * s.moments.m2) / (2 * kPi * a / lambda / std::sqrt(2.0)), 1.0, 1e-10);
+  const auto peak = std::max_element(s.psd.C.begin(), s.psd.C.end()) - s.psd.C.begin();
+  EXPECT_NEAR(s.psd.q[peak] / q, 1.0, 1e-12);
+  // All the power sits in that bin: bin mean times count times the cell equals h0^2.
+  const double qL = 2 * kPi / L;
+  EXPECT_NEAR(s.psd.C[peak] * s.psd.count[peak] * qL * qL / (a * a / 2), 1.0, 1e-10);
+}
+
+TEST(Spectrum, OblongSinusoidGivesIsotropicMoments) {
+  // A wave along (3, 4): |q| = 5 qL; rms gradient = |q| a / sqrt 2 in any direction.
+  const double L = 0.02, a = 1e-4;
+  const HeightMap h = sinusoid(128, L, a, 3, 4);
+  const double q = 5 * 2 * kPi / L;
+  const SpectrumResult s = analyze_spectrum(h);
+  EXPECT_NEAR(std::sqrt(2 * s.moments.m2) / (q * a / std::sqrt(2.0)), 1.0, 1e-10);
+  // m4 of the isotropic formula: 3/8 |B|^2 q^4 summed over +-q = (3/8) (a^2/2) q^4.
+  EXPECT_NEAR(s.moments.m4 / (0.375 * a * a / 2 * std::pow(q, 4)), 1.0, 1e-10);
+}
+
+TEST(Spectrum, NyquistSinusoidIsCountedOnce) {
+  // cos(pi n) on an even grid: the self-conjugate Nyquist coefficient.
+  const std::size_t n = 64;
+  HeightMap h(n, n, 1e-4, 1e-4);
+  for (std::size_t iy = 0; iy < n; ++iy)
+    for (std::size_t ix = 0; ix < n; ++ix) h(ix, iy) = (ix % 2 ? -1.0 : 1.0) * 1e-5;
+  const SpectrumResult s = analyze_spectrum(h);
+  EXPECT_NEAR(s.moments.m0 / 1e-10, 1.0, 1e-12);
+}
+
+TEST(Spectrum, ParsevalOnRandomMap) {
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g(0, 1e-4);
+  HeightMap h(90, 70, 1e-4, 2e-4);
+  for (double& v : h.h) v = g(rng);
+  double mean = 0;
+  for (double v : h.h) mean += v;
+  mean /= h.h.size();
+  for (double& v : h.h) v -= mean;
+  const SpectrumResult s = analyze_spectrum(h);
+  EXPECT_NEAR(std::sqrt(s.moments.m0) / height_stats(h).sq, 1.0, 1e-12);
+}
+
+TEST(Spectrum, ProfileMomentsAreTheSurfaceMoments) {
+  // A profile through an isotropic surface: m2 = <h'^2>, m4 = <h''^2> (eq. 3.14-3.17).
+  const std::size_t n = 512;
+  const double L = 0.05, a = 3e-4;
+  HeightMap p(n, 1, L / n, L / n, HeightMap::Kind::profile);
+  const int m = 11;
+  for (std::size_t i = 0; i < n; ++i) p.h[i] = a * std::cos(2 * kPi * m * double(i) / n);
+  const double q = 2 * kPi * m / L;
+  const SpectrumResult s = analyze_spectrum(p);
+  EXPECT_NEAR(s.moments.m0 / (a * a / 2), 1.0, 1e-10);
+  EXPECT_NEAR(s.moments.m2 / (a * a / 2 * q * q), 1.0, 1e-10);
+  EXPECT_NEAR(s.moments.m4 / (a * a / 2 * q * q * q * q), 1.0, 1e-10);
+}
+
+TEST(HeightStats, FiniteDifferenceSlopeOfSinusoidMatchesTheDiscreteFormula) {
+  // Forward differences of a sin(q x) have rms (2 a / dx) sin(q dx / 2) / sqrt 2.
+  const double L = 0.03, a = 2e-4;
+  const std::size_t n = 300;
+  const HeightMap h = sinusoid(n, L, a, 9, 0);
+  const double q = 2 * kPi * 9 / L, dx = L / n;
+  EXPECT_NEAR(rms_slope_finite_difference(h) / (2 * a / dx * std::sin(q * dx / 2) / std::sqrt(2.0)), 1.0, 1e-10);
+}
+
+TEST(HeightStats, SkewnessAndKurtosisOfASinusoid) {
+  const HeightMap h = sinusoid(200, 0.02, 1e-4, 4, 0);
+  const HeightStats s = height_stats(h);
+  EXPECT_NEAR(s.ssk, 0.0, 1e-10);
+  EXPECT_NEAR(s.sku, 1.5, 1e-10);  // <sin^4> / <sin^2>^2 = (3/8) / (1/4)
+  // Sa of the sampled wave: mean |sin| over the 50 samples of a period (2/pi in the limit).
+  double mean_abs = 0;
+  for (int i = 0; i < 50; ++i) mean_abs += std::abs(std::sin(2 * kPi * i / 50.0)) / 50;
+  EXPECT_NEAR(s.sa / (1e-4 * mean_abs), 1.0, 1e-12);
+  EXPECT_NEAR(mean_abs, 2 / kPi, 2e-3);
+}
+
+}  // namespace
+}  // namespace wr
