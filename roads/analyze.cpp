@@ -79,17 +79,17 @@ AnalysisReport analyze_surface(const LoadedSurface& s, const AnalysisOptions& op
   r.fit = fit_self_affine(r.psd, r.nyquist, r.profile);
 
   r.timer.start("height statistics");
-  const HeightStats hs = height_stats(m);
+  const HeightStats hs = height_stats(m, opt.threads);
   r.h0 = hs.sq;
   r.sa = hs.sa;
   r.ssk = hs.ssk;
   r.sku = hs.sku;
-  r.rms_slope_fd = rms_slope_finite_difference(m);
+  r.rms_slope_fd = rms_slope_finite_difference(m, opt.threads);
 
   const double alpha = r.moments.alpha();
   if (!r.profile) {
     r.timer.start("summits");
-    SummitStats ss = find_summits(m, r.h0);
+    SummitStats ss = find_summits(m, r.h0, opt.threads);
     r.summit_count = ss.count;
     r.summit_density = ss.density;
     if (ss.count > 0) {
@@ -110,7 +110,7 @@ AnalysisReport analyze_surface(const LoadedSurface& s, const AnalysisOptions& op
   }
 
   r.timer.start("mpd");
-  r.mpd = mpd_of_map(m, s.dropout, opt.mpd);
+  r.mpd = mpd_of_map(m, s.dropout, opt.mpd, opt.threads);
 
   r.timer.start("analytic");
   r.kappa_persson = kappa_persson();

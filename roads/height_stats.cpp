@@ -2,51 +2,87 @@
 
 #include <cmath>
 
-namespace wr {
+#include <array>
+#include <vector>
 
-HeightStats height_stats(const HeightMap& m) {
+#include "lib/core/parallel.hpp"
+
+namespace wr {
+namespace {
+
+// Sums of f(row) over all rows, per fixed chunk, combined in order.
+template <std::size_t K, class F>
+std::array<double, K> row_sums(std::size_t rows, int threads, F&& f) {
+  const std::size_t chunks = default_chunks(rows);
+  std::vector<std::array<double, K>> part(chunks);
+  parallel_chunks(rows, chunks, threads, [&](std::size_t c, std::size_t r0, std::size_t r1) {
+    std::array<double, K> acc{};
+    for (std::size_t r = r0; r < r1; ++r) f(r, acc);
+    part[c] = acc;
+  });
+  std::array<double, K> total{};
+  for (const auto& p : part)
+    for (std::size_t k = 0; k < K; ++k) total[k] += p[k];
+  return total;
+}
+
+}  // namespace
+
+HeightStats height_stats(const HeightMap& m, int threads) {
   HeightStats s;
   const double n = static_cast<double>(m.h.size());
-  long double sum = 0;
-  for (double v : m.h) sum += v;
-  s.mean = static_cast<double>(sum / n);
-  long double a = 0, s2 = 0, s3 = 0, s4 = 0;
-  for (double v : m.h) {
-    const long double d = v - s.mean, d2 = d * d;
-    a += std::fabs(static_cast<double>(d));
-    s2 += d2;
-    s3 += d2 * d;
-    s4 += d2 * d2;
-  }
-  s.sq = std::sqrt(static_cast<double>(s2 / n));
-  s.sa = static_cast<double>(a / n);
+  const auto mean = row_sums<1>(m.ny, threads, [&](std::size_t iy, std::array<double, 1>& a) {
+    double r = 0;
+    for (std::size_t ix = 0; ix < m.nx; ++ix) r += m(ix, iy);
+    a[0] += r;
+  });
+  s.mean = mean[0] / n;
+  const auto mom = row_sums<4>(m.ny, threads, [&](std::size_t iy, std::array<double, 4>& a) {
+    double ra = 0, r2 = 0, r3 = 0, r4 = 0;
+    for (std::size_t ix = 0; ix < m.nx; ++ix) {
+      const double d = m(ix, iy) - s.mean, d2 = d * d;
+      ra += std::fabs(d);
+      r2 += d2;
+      r3 += d2 * d;
+      r4 += d2 * d2;
+    }
+    a[0] += ra;
+    a[1] += r2;
+    a[2] += r3;
+    a[3] += r4;
+  });
+  s.sq = std::sqrt(mom[1] / n);
+  s.sa = mom[0] / n;
   if (s.sq > 0) {
-    s.ssk = static_cast<double>(s3 / n) / (s.sq * s.sq * s.sq);
-    s.sku = static_cast<double>(s4 / n) / (s.sq * s.sq * s.sq * s.sq);
+    s.ssk = (mom[2] / n) / (s.sq * s.sq * s.sq);
+    s.sku = (mom[3] / n) / (s.sq * s.sq * s.sq * s.sq);
   }
   return s;
 }
 
-double rms_slope_finite_difference(const HeightMap& m) {
+double rms_slope_finite_difference(const HeightMap& m, int threads) {
   const std::size_t nx = m.nx, ny = m.ny;
-  const std::size_t ex = m.periodic ? nx : nx - 1;  // number of x differences per row
-  long double gx = 0, gy = 0;
-  for (std::size_t iy = 0; iy < ny; ++iy)
+  const std::size_t ex = m.periodic ? nx : nx - 1;  // x differences per row
+  const std::size_t ey = m.periodic ? ny : ny - 1;  // rows with a y difference
+  const auto g = row_sums<2>(ny, threads, [&](std::size_t iy, std::array<double, 2>& a) {
+    double gx = 0, gy = 0;
     for (std::size_t ix = 0; ix < ex; ++ix) {
       const double d = (m(ix + 1 == nx ? 0 : ix + 1, iy) - m(ix, iy)) / m.dx;
       gx += d * d;
     }
-  const double mean_gx2 = static_cast<double>(gx / (ex * ny));
-  if (m.is_profile()) return std::sqrt(2.0 * mean_gx2);
-  const std::size_t ey = m.periodic ? ny : ny - 1;
-  for (std::size_t iy = 0; iy < ey; ++iy) {
-    const std::size_t jy = iy + 1 == ny ? 0 : iy + 1;
-    for (std::size_t ix = 0; ix < nx; ++ix) {
-      const double d = (m(ix, jy) - m(ix, iy)) / m.dy;
-      gy += d * d;
+    if (!m.is_profile() && iy < ey) {
+      const std::size_t jy = iy + 1 == ny ? 0 : iy + 1;
+      for (std::size_t ix = 0; ix < nx; ++ix) {
+        const double d = (m(ix, jy) - m(ix, iy)) / m.dy;
+        gy += d * d;
+      }
     }
-  }
-  return std::sqrt(mean_gx2 + static_cast<double>(gy / (ey * nx)));
+    a[0] += gx;
+    a[1] += gy;
+  });
+  const double mean_gx2 = g[0] / double(ex * ny);
+  if (m.is_profile()) return std::sqrt(2.0 * mean_gx2);
+  return std::sqrt(mean_gx2 + g[1] / double(ey * nx));
 }
 
 }  // namespace wr

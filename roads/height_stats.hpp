@@ -12,12 +12,13 @@ struct HeightStats {
   double mean = 0; // m (zero after mean-plane removal)
 };
 
-HeightStats height_stats(const HeightMap& map);
+// threads <= 0: all hardware threads; results do not depend on the thread count.
+HeightStats height_stats(const HeightMap& map, int threads = 0);
 
 // rms of |grad h| from forward differences (h[i+1]-h[i])/dx along x and y: the slope of the
 // piecewise-linear (triangulated) obstacle a contact solver meets. Wraps around on periodic maps;
 // otherwise uses the interior differences only. For a profile: sqrt(2) times the rms of the
 // profile slope, i.e. the surface rms slope assuming isotropy (comparable with sqrt(2 m2)).
-double rms_slope_finite_difference(const HeightMap& map);
+double rms_slope_finite_difference(const HeightMap& map, int threads = 0);
 
 }  // namespace wr

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lib/core/parallel.hpp"
 #include "roads/profile_filters.hpp"
 
 namespace wr {
@@ -87,26 +88,47 @@ MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt) {
   return r;
 }
 
-MpdResult mpd_of_map(const HeightMap& map, const std::vector<unsigned char>& dropout, const MpdOptions& opt) {
-  MpdAccumulator acc;
-  std::vector<double> line;
-  std::vector<unsigned char> bad;
-  for (std::size_t iy = 0; iy < map.ny; ++iy) {
-    line.assign(map.h.begin() + iy * map.nx, map.h.begin() + (iy + 1) * map.nx);
-    bad.assign(dropout.begin() + iy * map.nx, dropout.begin() + (iy + 1) * map.nx);
-    add_profile_segments(line, bad, map.dx, opt, acc);
-  }
-  if (!map.is_profile()) {
-    line.resize(map.ny);
-    bad.resize(map.ny);
-    for (std::size_t ix = 0; ix < map.nx; ++ix) {
-      for (std::size_t iy = 0; iy < map.ny; ++iy) {
-        line[iy] = map(ix, iy);
-        bad[iy] = dropout[iy * map.nx + ix];
+void merge(MpdAccumulator& acc, const MpdAccumulator& o) {
+  acc.msd.insert(acc.msd.end(), o.msd.begin(), o.msd.end());
+  acc.segments += o.segments;
+  acc.invalid_segments += o.invalid_segments;
+  acc.spikes += o.spikes;
+  acc.profiles += o.profiles;
+  acc.lowpass_skipped = acc.lowpass_skipped || o.lowpass_skipped;
+  acc.short_baseline = acc.short_baseline || o.short_baseline;
+  if (o.shortest_baseline > 0)
+    acc.shortest_baseline =
+        acc.shortest_baseline == 0 ? o.shortest_baseline : std::min(acc.shortest_baseline, o.shortest_baseline);
+}
+
+MpdResult mpd_of_map(const HeightMap& map, const std::vector<unsigned char>& dropout, const MpdOptions& opt,
+                     int threads) {
+  // Profiles 0..ny-1 are the rows; ny..ny+nx-1 the columns (maps only).
+  const std::size_t n_profiles = map.ny + (map.is_profile() ? 0 : map.nx);
+  const std::size_t chunks = default_chunks(n_profiles);
+  std::vector<MpdAccumulator> part(chunks);
+  parallel_chunks(n_profiles, chunks, threads, [&](std::size_t c, std::size_t p0, std::size_t p1) {
+    std::vector<double> line;
+    std::vector<unsigned char> bad;
+    for (std::size_t k = p0; k < p1; ++k) {
+      if (k < map.ny) {
+        line.assign(map.h.begin() + k * map.nx, map.h.begin() + (k + 1) * map.nx);
+        bad.assign(dropout.begin() + k * map.nx, dropout.begin() + (k + 1) * map.nx);
+        add_profile_segments(line, bad, map.dx, opt, part[c]);
+      } else {
+        const std::size_t ix = k - map.ny;
+        line.resize(map.ny);
+        bad.resize(map.ny);
+        for (std::size_t iy = 0; iy < map.ny; ++iy) {
+          line[iy] = map(ix, iy);
+          bad[iy] = dropout[iy * map.nx + ix];
+        }
+        add_profile_segments(line, bad, map.dy, opt, part[c]);
       }
-      add_profile_segments(line, bad, map.dy, opt, acc);
     }
-  }
+  });
+  MpdAccumulator acc;
+  for (const auto& p : part) merge(acc, p);
   return summarize(acc, opt);
 }
 

@@ -56,9 +56,13 @@ struct MpdResult {
 
 MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt);
 
+// Appends `other` to `acc` (segment depths in order).
+void merge(MpdAccumulator& acc, const MpdAccumulator& other);
+
 // All rows (and, for maps, all columns) of `map`; `dropout` marks samples with no valid data.
+// threads <= 0: all hardware threads; the result does not depend on the thread count.
 MpdResult mpd_of_map(const HeightMap& map, const std::vector<unsigned char>& dropout,
-                     const MpdOptions& opt = {});
+                     const MpdOptions& opt = {}, int threads = 0);
 
 // ETD = 0.2 mm + 0.8 MPD (ISO 13473-1 estimate of the sand-patch texture depth), metres.
 inline double estimated_texture_depth(double mpd) { return 0.2e-3 + 0.8 * mpd; }

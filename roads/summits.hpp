@@ -19,6 +19,7 @@ struct SummitStats {
   std::vector<double> xi;  // normalised heights of every summit
 };
 
-SummitStats find_summits(const HeightMap& map, double h0);
+// threads <= 0: all hardware threads; the summit list is in row order for any thread count.
+SummitStats find_summits(const HeightMap& map, double h0, int threads = 0);
 
 }  // namespace wr

@@ -9,7 +9,7 @@ void write_surface_file(const std::string& path, const HeightMap& map,
   Hdf5Writer w(path);
   const std::string ds = map.is_profile() ? "/profile" : "/height";
   if (map.is_profile())
-    w.write_vector(ds, map.h);
+    w.write_vector(ds, map.h.data(), map.h.size());
   else
     w.write_matrix(ds, map.h.data(), map.ny, map.nx);
   w.write_attr(ds, "dx", map.dx);

@@ -99,7 +99,8 @@ LoadedSurface load_hdf5(const std::string& path) {
   check_size(m, path);
   const double scale = unit_scale(f.attr_string(ds, "unit").value_or("m"), path);
   m.periodic = f.attr_double(ds, "periodic").value_or(0.0) != 0.0;
-  m.h = f.read_doubles(ds, cells);
+  m.h.resize(cells);
+  f.read_doubles(ds, m.h.data(), cells);
   if (scale != 1.0)
     for (double& v : m.h) v *= scale;
   out.map = std::move(m);
@@ -162,7 +163,7 @@ LoadedSurface load_text(const std::string& path, const TextGridOptions& opt) {
   m.periodic = opt.periodic;
   check_size(m, path);
   for (double& v : values) v *= opt.unit_scale;
-  m.h = std::move(values);
+  m.h.assign(values.begin(), values.end());
   out.map = std::move(m);
   return out;
 }
@@ -210,7 +211,7 @@ std::size_t fill_dropouts(HeightMap& m) {
     }
     return missing;
   }
-  std::vector<double> next = m.h;
+  BigVector next = m.h;
   std::size_t left = missing;
   while (left > 0) {
     std::size_t filled = 0;

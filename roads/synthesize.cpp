@@ -4,11 +4,11 @@
 #include <complex>
 #include <cstdio>
 #include <numbers>
-#include <random>
 
 #include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/core/memory_guard.hpp"
+#include "lib/core/parallel.hpp"
 
 namespace wr {
 namespace {
@@ -24,9 +24,17 @@ long signed_index(std::size_t i, std::size_t n) {
   return i <= n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n);
 }
 
-double uniform_phase(std::mt19937_64& rng) {
-  // 53 random bits -> [0, 1): independent of the standard library's distribution code.
-  return 2 * std::numbers::pi * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+// SplitMix64 finaliser: a counter-based generator, so the phase of each wave-vector depends only
+// on (seed, index) and the fill can run in parallel in any order.
+std::uint64_t mix64(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+double uniform_phase(std::uint64_t seed, std::uint64_t index) {
+  const std::uint64_t bits = mix64(mix64(seed) + 0x9e3779b97f4a7c15ULL * (index + 1));
+  return 2 * std::numbers::pi * static_cast<double>(bits >> 11) * 0x1.0p-53;  // 53 bits -> [0, 2 pi)
 }
 
 struct Grid {
@@ -95,28 +103,44 @@ SynthResult synthesize(const SynthParams& p) {
 
   // Amplitudes with the eq. 4.4 plateau first; the lattice power of the uncut spectrum is
   // summed on the way (interior half-plane columns stand for q and -q) and fixes the rescale.
-  RealFft2d fft(g.nx, g.ny, p.threads);
+  r.map = HeightMap(g.nx, g.ny, g.dx, g.dy);
+  r.map.periodic = true;
+  RealFft2d fft(g.nx, g.ny, p.threads, r.map.h.data());  // c2r writes straight into the map
   std::complex<double>* spec = fft.spectrum();
   const std::size_t nxh = fft.nxh();
-  std::mt19937_64 rng(p.seed);
   const double cell = g.qLx * g.qLy;
-  double power_eq44 = 0;
-  for (std::size_t iy = 0; iy < g.ny; ++iy) {
-    const double qy = signed_index(iy, g.ny) * g.qLy;
-    for (std::size_t ix = 0; ix < nxh; ++ix) {
-      const double qx = signed_index(ix, g.nx) * g.qLx;
-      const double phase = uniform_phase(rng);
-      const double q = std::sqrt(qx * qx + qy * qy);
-      const double c_full = full(q);
-      const double weight = (ix == 0 || (g.nx % 2 == 0 && ix == g.nx / 2)) ? 1.0 : 2.0;
-      power_eq44 += weight * c_full * cell;
-      const double c = q <= cut.q1_cut * (1 + 1e-12) ? c_full : 0.0;
-      spec[iy * nxh + ix] = std::polar(std::sqrt(c * cell), phase);
+  const std::size_t chunks = default_chunks(g.ny);
+  std::vector<double> power(chunks, 0.0);
+  std::vector<std::size_t> waves(chunks, 0);
+  parallel_chunks(g.ny, chunks, p.threads, [&](std::size_t chunk, std::size_t y0, std::size_t y1) {
+    double pw = 0;
+    std::size_t active = 0;
+    for (std::size_t iy = y0; iy < y1; ++iy) {
+      const double qy = signed_index(iy, g.ny) * g.qLy;
+      for (std::size_t ix = 0; ix < nxh; ++ix) {
+        const double qx = signed_index(ix, g.nx) * g.qLx;
+        const double q = std::sqrt(qx * qx + qy * qy);
+        const double c_full = full(q);
+        const double weight = (ix == 0 || (g.nx % 2 == 0 && ix == g.nx / 2)) ? 1.0 : 2.0;
+        pw += weight * c_full * cell;
+        const double c = q <= cut.q1_cut * (1 + 1e-12) ? c_full : 0.0;
+        active += c > 0 ? static_cast<std::size_t>(weight) : 0;
+        spec[iy * nxh + ix] = c > 0 ? std::polar(std::sqrt(c * cell), uniform_phase(p.seed, iy * nxh + ix)) : 0.0;
+      }
     }
+    power[chunk] = pw;
+    waves[chunk] = active;
+  });
+  double power_eq44 = 0;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    power_eq44 += power[c];
+    r.active_waves += waves[c];  // non-zero coefficients of the full plane
   }
   r.h0_eq44_on_lattice = std::sqrt(power_eq44);
   const double rescale = p.h0 / r.h0_eq44_on_lattice;
-  for (std::size_t i = 0; i < g.ny * nxh; ++i) spec[i] *= rescale;
+  parallel_chunks(g.ny, chunks, p.threads, [&](std::size_t, std::size_t y0, std::size_t y1) {
+    for (std::size_t i = y0 * nxh; i < y1 * nxh; ++i) spec[i] *= rescale;
+  });
   r.psd = cut;
   r.psd.k = full.k * rescale * rescale;
 
@@ -136,16 +160,9 @@ SynthResult synthesize(const SynthParams& p) {
     }
   }
   spec[0] = 0.0;  // mean plane at zero
-  std::size_t active = 0;
-  for (std::size_t iy = 0; iy < g.ny; ++iy)
-    for (std::size_t ix = 0; ix < nxh; ++ix)
-      if (spec[iy * nxh + ix] != 0.0) active += (ix == 0 || (g.nx % 2 == 0 && ix == g.nx / 2)) ? 1 : 2;
-  r.active_waves = active;
+
 
   fft.backward();
-  r.map = HeightMap(g.nx, g.ny, g.dx, g.dy);
-  r.map.periodic = true;
-  std::copy(fft.real(), fft.real() + g.nx * g.ny, r.map.h.begin());
   return r;
 }
 

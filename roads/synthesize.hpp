@@ -12,10 +12,10 @@
 // h0 of the uncut surface therefore equals the prescribed one to rounding; how far eq. 4.4 alone
 // would land is reported in `h0_eq44_on_lattice`.
 //
-// Determinism: phases come from std::mt19937_64(seed) drawn in a fixed order over the whole
-// half spectrum (also where the amplitude is zero), and the FFT plan is FFTW_ESTIMATE, so the
-// same options give a bit-identical map, and changing h0 or the low-pass fraction changes the
-// amplitudes of the same waves only.
+// Determinism: the phase of each half-spectrum wave-vector is a counter-based hash (SplitMix64)
+// of (seed, index), so the fill runs in parallel, the parallel power sum is combined in a fixed
+// chunk order, and the FFT plan is FFTW_ESTIMATE: the same options give a bit-identical map,
+// and changing h0 or the low-pass fraction changes the amplitudes of the same waves only.
 #include <cstdint>
 #include <optional>
 

@@ -17,7 +17,11 @@ int hardware_threads();
 class RealFft2d {
  public:
   // ny == 1 gives a 1-D transform of length nx. threads <= 0: hardware_threads().
-  RealFft2d(std::size_t nx, std::size_t ny, int threads = 0);
+  // `external_real` (nx*ny doubles, owned by the caller and alive as long as this object) is
+  // used as the real array instead of an internal one: it saves a copy and, more importantly
+  // on virtual machines, the first-touch page faults of a second large buffer. forward()
+  // leaves it intact (out-of-place r2c preserves its input).
+  RealFft2d(std::size_t nx, std::size_t ny, int threads = 0, double* external_real = nullptr);
   ~RealFft2d();
   RealFft2d(const RealFft2d&) = delete;
   RealFft2d& operator=(const RealFft2d&) = delete;
@@ -34,6 +38,7 @@ class RealFft2d {
  private:
   std::size_t nx_, ny_;
   double* real_ = nullptr;
+  bool owns_real_ = true;
   std::complex<double>* spec_ = nullptr;
   fftw_plan fwd_ = nullptr;
   fftw_plan bwd_ = nullptr;

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "lib/core/big_buffer.hpp"
+
 namespace wr {
 
 struct HeightMap {
@@ -20,7 +22,7 @@ struct HeightMap {
   double dy = 0.0;  // m (equals dx for a profile)
   bool periodic = true;
   Kind kind = Kind::map;
-  std::vector<double> h;  // m; NaN marks a dropout until it is filled
+  BigVector h;  // m; NaN marks a dropout until it is filled
 
   HeightMap() = default;
   HeightMap(std::size_t nx_, std::size_t ny_, double dx_, double dy_, Kind kind_ = Kind::map)

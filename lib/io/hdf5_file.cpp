@@ -86,17 +86,18 @@ std::vector<std::size_t> Hdf5Reader::dims(const std::string& dataset) const {
   return {d.begin(), d.end()};
 }
 
-std::vector<double> Hdf5Reader::read_doubles(const std::string& dataset, std::size_t count) const {
+void Hdf5Reader::read_doubles(const std::string& dataset, double* out, std::size_t count) const {
   Handle ds(H5Dopen2(file_, dataset.c_str(), H5P_DEFAULT), H5Dclose);
   if (!ds.ok()) throw InputError(path_, "cannot open dataset " + dataset);
   Handle type(H5Dget_type(ds.get()), H5Tclose);
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_FLOAT && cls != H5T_INTEGER)
     throw InputError(path_, "dataset " + dataset + " is not numeric");
-  std::vector<double> out(count);
-  if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+  Handle space(H5Dget_space(ds.get()), H5Sclose);
+  if (static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.get())) != count)
+    throw InputError(path_, "dataset " + dataset + " does not hold the expected number of values");
+  if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
     throw InputError(path_, "cannot read dataset " + dataset + " (corrupt or truncated file)");
-  return out;
 }
 
 std::optional<double> Hdf5Reader::attr_double(const std::string& object,
@@ -172,13 +173,13 @@ void Hdf5Writer::write_matrix(const std::string& name, const double* data, std::
     throw InputError(final_path_, "cannot write dataset " + name + " (disk full?)");
 }
 
-void Hdf5Writer::write_vector(const std::string& name, const std::vector<double>& v) {
-  const hsize_t d[1] = {v.size()};
+void Hdf5Writer::write_vector(const std::string& name, const double* data, std::size_t n) {
+  const hsize_t d[1] = {n};
   Handle space(H5Screate_simple(1, d, nullptr), H5Sclose);
   Handle ds(H5Dcreate2(file_, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
                        H5P_DEFAULT),
             H5Dclose);
-  if (!ds.ok() || H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+  if (!ds.ok() || H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw InputError(final_path_, "cannot write dataset " + name + " (disk full?)");
 }
 

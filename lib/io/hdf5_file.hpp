@@ -24,8 +24,9 @@ class Hdf5Reader {
   bool has_dataset(const std::string& name) const;
   bool has_group(const std::string& name) const;
   std::vector<std::size_t> dims(const std::string& dataset) const;
-  // Reads any numeric dataset converted to double; `count` must equal its element count.
-  std::vector<double> read_doubles(const std::string& dataset, std::size_t count) const;
+  // Reads any numeric dataset converted to double into out[0..count); `count` must equal its
+  // element count.
+  void read_doubles(const std::string& dataset, double* out, std::size_t count) const;
   // Attributes on an object (group or dataset path, "/" for the root).
   std::optional<double> attr_double(const std::string& object, const std::string& name) const;
   std::optional<std::string> attr_string(const std::string& object, const std::string& name) const;
@@ -44,7 +45,8 @@ class Hdf5Writer {
 
   void create_group(const std::string& name);
   void write_matrix(const std::string& name, const double* data, std::size_t ny, std::size_t nx);
-  void write_vector(const std::string& name, const std::vector<double>& v);
+  void write_vector(const std::string& name, const double* data, std::size_t n);
+  void write_vector(const std::string& name, const std::vector<double>& v) { write_vector(name, v.data(), v.size()); }
   void write_attr(const std::string& object, const std::string& name, double value);
   void write_attr(const std::string& object, const std::string& name, std::int64_t value);
   void write_attr(const std::string& object, const std::string& name, const std::string& value);
