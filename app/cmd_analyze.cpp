@@ -23,6 +23,8 @@ struct AnalyzeCli {
 };
 
 int run_analyze(const AnalyzeCli& c) {
+  if (!(c.mpd.baseline > 0)) throw InputError("--baseline", "must be a positive length in m");
+  if (!(c.mpd.lowpass_wavelength >= 0)) throw InputError("--lowpass", "must be >= 0 m (0 switches it off)");
   PhaseTimer io;
   io.start("read");
   TextGridOptions text;
@@ -72,15 +74,16 @@ int run_analyze(const AnalyzeCli& c) {
 
 Command add_analyze(CLI::App& root) {
   auto c = std::make_shared<AnalyzeCli>();
-  CLI::App* s = root.add_subcommand(
-      "analyze",
+  CLI::App* s = root.add_subcommand("analyze", "texture statistics of a surface: PSD, moments, summits, MPD");
+  s->footer(
       "Texture statistics of a surface: size and spacing; h0 (Sq), Sa, Ssk, Sku; rms slope (spectral\n"
       "sqrt(2 m2) and finite differences); m0, m2, m4, alpha; radially averaged PSD with a fit of\n"
       "plateau, roll-off q0 and Hurst exponent; summits against Nayak (eq. 3.69, 4.5); MPD after\n"
       "ISO 13473-1 over every row and column, ETD; Persson/BGT low-pressure kappa and Persson's\n"
       "A/A0. For a file made by `synth` the prescribed values stand beside the measured ones.\n"
       "Input: HDF5 (/height 2-D with dx, dy attributes in m, or /profile 1-D with dx) or a\n"
-      "plain-text grid (whitespace/comma separated, rows = y; needs --dx). NaN = dropout.");
+      "plain-text grid (whitespace/comma separated, rows = y; needs --dx). NaN = dropout.\n"
+      "Example: wetroad analyze road.h5 --json road.json --out road-analysis.h5");
   s->add_option("file", c->input, "surface file (HDF5 or text grid)")->required();
   s->add_option("--json", c->json, "write the summary as JSON (SI units; keys documented in README)");
   s->add_option("--out", c->out, "write the summary, the radial PSD (/psd/q, /psd/C) and summit heights to HDF5");
@@ -97,7 +100,7 @@ Command add_analyze(CLI::App& root) {
       ->capture_default_str();
   s->add_flag("--no-expected-mpd", c->no_expected_mpd,
               "skip the MPD expected on 100 mm profiles from the prescribed PSD (synthesized files)");
-  s->add_option("--threads", c->threads, "FFT threads (default: all hardware threads)");
+  s->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_analyze(*c); }};
 }

@@ -60,18 +60,18 @@ int run_summits(const BenchCli& c) {
 
 Command add_bench(CLI::App& root) {
   auto c = std::make_shared<BenchCli>();
-  CLI::App* b = root.add_subcommand("bench", "Benchmarks and long validations (not part of `make test`).");
+  CLI::App* b = root.add_subcommand("bench", "benchmarks and long validations (not part of make test)");
   b->require_subcommand(1);
   CLI::App* sp = b->add_subcommand("speed", "Wall time and peak memory of synth + analyze on N x N surfaces.");
   sp->add_option("--sizes", c->sizes, "grid sizes N")->capture_default_str();
   sp->add_option("--repeat", c->repeats, "repetitions; the best time is reported")->capture_default_str();
-  sp->add_option("--threads", c->threads, "FFT threads (default: all hardware threads)");
+  sp->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");
   sp->add_flag("--files", c->files, "go through an HDF5 file between synth and analyze (as the CLI does)");
   sp->add_option("--json", c->json, "write the results as JSON");
   CLI::App* su = b->add_subcommand("summits", "Summit-height statistics of surface ensembles against eq. 4.5 (Fig. 4.4).");
   su->add_option("--realizations", c->realizations, "surfaces per alpha")->capture_default_str();
   su->add_option("--fractions", c->fractions, "low-pass fractions q1/q1^ (dataset C)")->capture_default_str();
-  su->add_option("--threads", c->threads, "FFT threads (default: all hardware threads)");
+  su->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");
   su->add_option("--json", c->json, "write the results as JSON");
   return {b, [c, sp, su] {
             if (sp->parsed()) return run_speed(*c);

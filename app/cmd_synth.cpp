@@ -132,12 +132,14 @@ int run_synth(const SynthCli& c) {
 
 Command add_synth(CLI::App& root) {
   auto c = std::make_shared<SynthCli>();
-  CLI::App* s = root.add_subcommand(
-      "synth",
+  CLI::App* s = root.add_subcommand("synth", "synthesize a self-affine road surface from its power spectrum");
+  s->footer(
       "Synthesize a periodic, isotropic, self-affine surface by random-phase FFT (thesis sec. 4.1)\n"
       "and write it as an HDF5 height map (/height, dx, dy; the prescribed PSD in /synthesis).\n"
       "The plateau k comes from eq. 4.4 and is then normalised on the lattice, so the measured\n"
-      "rms height equals --h0. Same options and seed give a bit-identical map.");
+      "rms height equals --h0. Same options and seed give a bit-identical map.\n"
+      "Example: wetroad synth --scene default -o road.h5\n"
+      "         wetroad synth --size 300 --dx 1e-4 --h0 7.08e-4 --q1 62832 --oversample 2 -o c.h5");
   s->add_option("-o,--output", c->output, "output HDF5 file (written atomically)")->required();
   c->opts["--scene"] = s->add_option("--scene", c->scene,
                                      "scene JSON with a \"surface\" block of defaults ('default' = "
@@ -159,7 +161,7 @@ Command add_synth(CLI::App& root) {
                                           "generate on a grid S times finer (N S points at dx / S) (default 1)");
   c->opts["--seed"] = s->add_option("--seed", c->seed, "random seed of the phases (default 1)");
   s->add_option("--json", c->json, "also write a JSON summary of what was generated");
-  s->add_option("--threads", c->threads, "FFT threads (default: all hardware threads)");
+  s->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_synth(*c); }};
 }
