@@ -162,25 +162,25 @@ void Hdf5Writer::create_group(const std::string& name) {
   if (!g.ok()) throw InputError(final_path_, "cannot create group " + name);
 }
 
-void Hdf5Writer::write_matrix(const std::string& name, const double* data, std::size_t ny,
-                              std::size_t nx) {
-  const hsize_t d[2] = {ny, nx};
-  Handle space(H5Screate_simple(2, d, nullptr), H5Sclose);
-  Handle ds(H5Dcreate2(file_, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                       H5P_DEFAULT),
+namespace {
+void write_dataset(hid_t file, const std::string& path, const std::string& name, const hsize_t* dims, int rank,
+                   const double* data) {
+  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
+  Handle ds(H5Dcreate2(file, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
             H5Dclose);
   if (!ds.ok() || H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    throw InputError(final_path_, "cannot write dataset " + name + " (disk full?)");
+    throw InputError(path, "cannot write dataset " + name + " (disk full?)");
+}
+}  // namespace
+
+void Hdf5Writer::write_matrix(const std::string& name, const double* data, std::size_t ny, std::size_t nx) {
+  const hsize_t d[2] = {ny, nx};
+  write_dataset(file_, final_path_, name, d, 2, data);
 }
 
 void Hdf5Writer::write_vector(const std::string& name, const double* data, std::size_t n) {
   const hsize_t d[1] = {n};
-  Handle space(H5Screate_simple(1, d, nullptr), H5Sclose);
-  Handle ds(H5Dcreate2(file_, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                       H5P_DEFAULT),
-            H5Dclose);
-  if (!ds.ok() || H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    throw InputError(final_path_, "cannot write dataset " + name + " (disk full?)");
+  write_dataset(file_, final_path_, name, d, 1, data);
 }
 
 namespace {
