@@ -5,6 +5,7 @@
 #include <deque>
 
 #include "lib/core/errors.hpp"
+#include "water/height_order.hpp"
 #include "water/lifted_union_find.hpp"
 
 namespace wr {
@@ -102,11 +103,7 @@ DepressionHierarchy::DepressionHierarchy(const HeightMap& map, int connectivity,
 
   const std::vector<std::uint32_t> sink = find_sinks(route_downhill(topo_, h_));
 
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return h_[a] < h_[b] || (h_[a] == h_[b] && a < b);
-  });
+  const std::vector<std::uint32_t> order = cells_in_height_order(h_);
 
   LiftedUnionFind uf(n);
   std::vector<char> active(n, 0), wrapped(n, 0);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "lib/core/errors.hpp"
+#include "water/height_order.hpp"
 #include "water/lifted_union_find.hpp"
 
 namespace wr {
@@ -13,11 +14,7 @@ BigVector drained_limit_levels(const HeightMap& map, int connectivity, Boundary 
   const std::size_t n = map.h.size(), nx = map.nx;
   for (double v : map.h)
     if (!std::isfinite(v)) throw InputError("", "the surface has NaN/Inf heights; fill dropouts first");
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return map.h[a] < map.h[b] || (map.h[a] == map.h[b] && a < b);
-  });
+  const std::vector<std::uint32_t> order = cells_in_height_order(map.h);
   BigVector level(n, std::nan(""));
   LiftedUnionFind uf(n);
   std::vector<char> active(n, 0), wrapped(n, 0);
