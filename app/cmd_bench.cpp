@@ -16,6 +16,8 @@ struct BenchCli {
   bool files = false;
   std::vector<double> fractions = {1.0, 0.5, 0.25, 0.125};
   std::string json;
+  std::size_t water_n = 1024;
+  int seeds = 10;
 };
 
 int run_speed(const BenchCli& c) {
@@ -56,6 +58,40 @@ int run_summits(const BenchCli& c) {
   return 0;
 }
 
+int run_water(const BenchCli& c) {
+  const auto r = bench::water_speed(c.water_n, 5);
+  if (r.contains("error")) {
+    std::printf("error: %s\n", r["error"].get<std::string>().c_str());
+    return 1;
+  }
+  std::printf("water on a %zu x %zu default-like surface (serial code paths)\n", c.water_n, c.water_n);
+  std::printf("  drained limit (direct)   %8.4f s  %6.2f Mcells/s\n", r["limit_s"].get<double>(),
+              r["limit_cells_per_s"].get<double>() / 1e6);
+  std::printf("  hierarchy build          %8.4f s  %6.2f Mcells/s  (%zu nodes)\n", r["hierarchy_s"].get<double>(),
+              r["hierarchy_cells_per_s"].get<double>() / 1e6, r["hierarchy_nodes"].get<std::size_t>());
+  std::printf("  further rain depth       %8.4f s mean, %.4f s worst  %6.2f Mcells/s\n", r["rain_mean_s"].get<double>(),
+              r["rain_worst_s"].get<double>(), r["rain_cells_per_s"].get<double>() / 1e6);
+  std::printf("  coverage target 30%%      %8.4f s (hierarchy + bisection)\n", r["coverage_target_s"].get<double>());
+  std::printf("  peak memory              %8.1f MiB (%.1f bytes per cell)\n", r["peak_rss_bytes"].get<double>() / 1048576,
+              r["peak_rss_bytes"].get<double>() / double(c.water_n * c.water_n));
+  if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
+  return 0;
+}
+
+int run_coverage(const BenchCli& c) {
+  const auto rows = bench::water_limit_coverage(c.seeds);
+  std::printf("drained-limit coverage of the default surface (300x300, h0 0.3 mm, H 0.7), %d seeds; thesis: 40.45%%\n",
+              c.seeds);
+  std::printf("  %12s %20s %20s %16s\n", "connectivity", "exact torus", "3x3 tiling", "cells differing");
+  for (const auto& r : rows)
+    std::printf("  %12d %12.2f +- %4.2f %12.2f +- %4.2f %16.0f\n", r["connectivity"].get<int>(),
+                100 * r["exact_mean"].get<double>(), 100 * r["exact_std"].get<double>(),
+                100 * r["tiled_3x3_mean"].get<double>(), 100 * r["tiled_3x3_std"].get<double>(),
+                r["tiling_differing_cells_mean"].get<double>());
+  if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
 
 Command add_bench(CLI::App& root) {
@@ -73,9 +109,17 @@ Command add_bench(CLI::App& root) {
   su->add_option("--fractions", c->fractions, "low-pass fractions q1/q1^ (dataset C)")->capture_default_str();
   su->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");
   su->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su] {
+  CLI::App* wa = b->add_subcommand("water", "Speed and memory of the water module (drained limit, hierarchy, rain depths).");
+  wa->add_option("--size", c->water_n, "grid size N")->capture_default_str();
+  wa->add_option("--json", c->json, "write the results as JSON");
+  CLI::App* co = b->add_subcommand("coverage", "Drained-limit coverage of the default surface over seeds (4 and 8 connectivity).");
+  co->add_option("--seeds", c->seeds, "realizations")->capture_default_str();
+  co->add_option("--json", c->json, "write the results as JSON");
+  return {b, [c, sp, su, wa, co] {
             if (sp->parsed()) return run_speed(*c);
             if (su->parsed()) return run_summits(*c);
+            if (wa->parsed()) return run_water(*c);
+            if (co->parsed()) return run_coverage(*c);
             return 2;
           }};
 }

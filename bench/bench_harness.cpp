@@ -15,6 +15,10 @@
 #include "roads/surface_file.hpp"
 #include "roads/surface_import.hpp"
 #include "roads/synthesize.hpp"
+#include "water/depression_hierarchy.hpp"
+#include "water/drained_limit.hpp"
+#include "water/fill_spill_merge.hpp"
+#include "water/rain_fill.hpp"
 
 namespace wr::bench {
 namespace {
@@ -91,43 +95,144 @@ nlohmann::json speed_one(std::size_t n, int repeats, int threads, bool with_file
 
 }  // namespace
 
+namespace {
+
+// Runs f() in a forked child and returns its JSON, so that the peak memory it reports is its own.
+template <class F>
+nlohmann::json in_child(F f) {
+  int fd[2];
+  if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    std::string s;
+    try {
+      s = f().dump();
+    } catch (const std::exception& e) {
+      s = nlohmann::json{{"error", e.what()}}.dump();
+    }
+    const char* p = s.data();
+    std::size_t left = s.size();
+    while (left > 0) {
+      const ssize_t w = write(fd[1], p, left);
+      if (w <= 0) break;
+      p += w;
+      left -= static_cast<std::size_t>(w);
+    }
+    close(fd[1]);
+    _exit(0);
+  }
+  close(fd[1]);
+  std::string buf;
+  char chunk[4096];
+  ssize_t got;
+  while ((got = read(fd[0], chunk, sizeof chunk)) > 0) buf.append(chunk, static_cast<std::size_t>(got));
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return buf.empty() ? nlohmann::json{{"error", "child failed"}} : nlohmann::json::parse(buf);
+}
+
+HeightMap default_like_surface(std::size_t n, std::uint64_t seed) {
+  SynthParams p;  // default scene's spectrum (h0 0.3 mm, H 0.7, q0 = 5 qL), 0.1 mm spacing
+  p.nx = p.ny = n;
+  p.dx = 1e-4;
+  p.h0 = 3e-4;
+  p.hurst = 0.7;
+  p.seed = seed;
+  return synthesize(p).map;
+}
+
+}  // namespace
+
 nlohmann::json speed(const std::vector<std::size_t>& sizes, int repeats, int threads, bool with_files,
                      const std::string& scratch_dir) {
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t n : sizes) {
-    int fd[2];
-    if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
-    const pid_t pid = fork();
-    if (pid == 0) {
-      close(fd[0]);
-      std::string s;
-      try {
-        s = speed_one(n, repeats, threads, with_files, scratch_dir).dump();
-      } catch (const std::exception& e) {
-        s = nlohmann::json{{"n", n}, {"error", e.what()}}.dump();
-      }
-      const char* p = s.data();
-      std::size_t left = s.size();
-      while (left > 0) {
-        const ssize_t w = write(fd[1], p, left);
-        if (w <= 0) break;
-        p += w;
-        left -= static_cast<std::size_t>(w);
-      }
-      close(fd[1]);
-      _exit(0);
-    }
-    close(fd[1]);
-    std::string buf;
-    char chunk[4096];
-    ssize_t got;
-    while ((got = read(fd[0], chunk, sizeof chunk)) > 0) buf.append(chunk, static_cast<std::size_t>(got));
-    close(fd[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    out.push_back(buf.empty() ? nlohmann::json{{"n", n}, {"error", "child failed"}} : nlohmann::json::parse(buf));
+    nlohmann::json r = in_child([&] { return speed_one(n, repeats, threads, with_files, scratch_dir); });
+    r["n"] = n;
+    out.push_back(r);
   }
   return out;
+}
+
+nlohmann::json water_speed(std::size_t n, int rain_depths) {
+  return in_child([&] {
+    const HeightMap m = default_like_surface(n, 1);
+    const double cells = double(m.h.size());
+    double t0 = now();
+    const BigVector lim = drained_limit_levels(m, 4, Boundary::torus);
+    const double t_limit = now() - t0;
+    t0 = now();
+    const DepressionHierarchy dh(m, 4, Boundary::torus);
+    const double t_build = now() - t0;
+    double t_rain = 0, worst = 0;
+    for (int k = 0; k < rain_depths; ++k) {
+      const double d = 1e-6 * std::pow(4.0, k);
+      t0 = now();
+      const WaterState w = fill_spill_merge(dh, d, WaterMode::drained);
+      const double dt = now() - t0;
+      t_rain += dt;
+      worst = std::max(worst, dt);
+    }
+    t0 = now();
+    FillRequest req;
+    req.coverage = 0.3;
+    const FillResult fr = fill_water(m, req);
+    const double t_cov = now() - t0;
+    return nlohmann::json{{"n", n},
+                          {"limit_s", t_limit},
+                          {"limit_cells_per_s", cells / t_limit},
+                          {"hierarchy_s", t_build},
+                          {"hierarchy_cells_per_s", cells / t_build},
+                          {"hierarchy_nodes", dh.nodes().size()},
+                          {"rain_mean_s", t_rain / rain_depths},
+                          {"rain_worst_s", worst},
+                          {"rain_cells_per_s", cells * rain_depths / t_rain},
+                          {"coverage_target_s", t_cov},
+                          {"peak_rss_bytes", double(peak_rss_bytes())}};
+  });
+}
+
+nlohmann::json water_limit_coverage(int seeds) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int conn : {4, 8}) {
+    std::vector<double> exact, tiled, differ;
+    for (int s = 1; s <= seeds; ++s) {
+      const HeightMap m = default_like_surface(300, std::uint64_t(s));
+      FillRequest req;
+      req.limit = true;
+      req.connectivity = conn;
+      const FillResult e = fill_water(m, req);
+      req.tiling = Tiling::three_by_three;
+      const FillResult t = fill_water(m, req);
+      exact.push_back(e.water.coverage);
+      tiled.push_back(t.water.coverage);
+      differ.push_back(double(t.tiling_differing_cells.value_or(0)));
+      std::fprintf(stderr, "\r  connectivity %d: %d/%d surfaces", conn, s, seeds);
+    }
+    std::fprintf(stderr, "\n");
+    auto stats = [](const std::vector<double>& v) {
+      double m = 0, s2 = 0;
+      for (double x : v) m += x;
+      m /= double(v.size());
+      for (double x : v) s2 += (x - m) * (x - m);
+      return std::pair{m, v.size() > 1 ? std::sqrt(s2 / double(v.size() - 1)) : 0.0};
+    };
+    const auto [em, es] = stats(exact);
+    const auto [tm, ts] = stats(tiled);
+    const auto [dm, ds] = stats(differ);
+    rows.push_back({{"connectivity", conn},
+                    {"seeds", seeds},
+                    {"exact_mean", em},
+                    {"exact_std", es},
+                    {"tiled_3x3_mean", tm},
+                    {"tiled_3x3_std", ts},
+                    {"tiling_differing_cells_mean", dm},
+                    {"exact", exact},
+                    {"tiled_3x3", tiled}});
+  }
+  return rows;
 }
 
 nlohmann::json summit_ensemble(const std::vector<double>& fractions, int realizations, int threads) {

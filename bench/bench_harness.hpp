@@ -17,4 +17,12 @@ nlohmann::json speed(const std::vector<std::size_t>& sizes, int repeats, int thr
 // variance against eq. 4.5 at the prescribed alpha. Progress lines go to stderr.
 nlohmann::json summit_ensemble(const std::vector<double>& fractions, int realizations, int threads);
 
+// Water on an N x N default-like surface, single-threaded code paths: drained limit, hierarchy
+// build, further rain depths, coverage bisection; cells per second; peak memory (forked child).
+nlohmann::json water_speed(std::size_t n, int rain_depths);
+
+// Drained-limit coverage of the default asphalt-like surface over `seeds` realizations for
+// 4- and 8-connectivity (exact torus and the thesis's 3x3 tiling).
+nlohmann::json water_limit_coverage(int seeds);
+
 }  // namespace wr::bench

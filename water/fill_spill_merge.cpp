@@ -11,36 +11,48 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// One rain depth on one hierarchy: holdings H[N] (water in N's subtree, m x cells) and the
-// capacities of the mode.
+// One rain depth on one hierarchy. Bookkeeping is per node and local: own[N] is the water
+// in N's own lake (above its creation level, only once both children are full; all of a
+// leaf's water), own_cap[N] its room up to N's spill level. A node is full when its own lake
+// and (for a merge node) both children are full; fullness only ever switches on. Rain is
+// poured leaf by leaf: it fills the entry node, overflows to the sibling over the saddle (or
+// to infinity in drained mode), and rises into the parent's lake when both sides are full.
+// The walk stops as soon as the water is absorbed, so no subtree totals need updating, and
+// the final state does not depend on the pouring order.
 class Filler {
  public:
   Filler(const DepressionHierarchy& dh, WaterMode mode) : dh_(dh), nd_(dh.nodes()), mode_(mode) {
     const std::size_t n = nd_.size();
     cap_.assign(n, kInf);
+    own_cap_.assign(n, kInf);
     drains_.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
       const DepressionNode& N = nd_[i];
       const double parent_level = N.parent >= 0 ? nd_[N.parent].level : kInf;
       if (mode_ == WaterMode::stagnant) {
         cap_[i] = std::isfinite(parent_level) ? dh_.volume(int(i), parent_level) : kInf;
-        continue;
+      } else {
+        const bool ocean = N.ocean_at_birth || N.wraps();
+        drains_[i] = ocean || (N.parent >= 0 && nd_[N.parent].ocean_at_birth);
+        if (N.ocean_at_birth)
+          cap_[i] = N.is_leaf() ? 0.0 : cap_[N.child[0]] + cap_[N.child[1]];  // no lake of its own
+        else if (N.wraps())
+          cap_[i] = dh_.volume(int(i), N.wrap);
+        else if (std::isfinite(parent_level))
+          cap_[i] = dh_.volume(int(i), parent_level);
       }
-      const bool ocean = N.ocean_at_birth || N.wraps();
-      drains_[i] = ocean || (N.parent >= 0 && nd_[N.parent].ocean_at_birth);
-      if (N.ocean_at_birth)
-        cap_[i] = 0;  // never holds a lake of its own: whatever reaches its level drains
-      else if (N.wraps())
-        cap_[i] = dh_.volume(int(i), N.wrap);
-      else if (std::isfinite(parent_level))
-        cap_[i] = dh_.volume(int(i), parent_level);
+      own_cap_[i] = N.is_leaf() ? cap_[i] : cap_[i] - cap_[N.child[0]] - cap_[N.child[1]];
+      if (!(own_cap_[i] > 0)) own_cap_[i] = std::isinf(cap_[i]) ? kInf : 0.0;
     }
   }
 
   WaterState run(double d) {
     const std::size_t n = nd_.size();
-    H_.assign(n, 0.0);
-    own_lake_.assign(n, 0.0);
+    own_.assign(n, 0.0);
+    full_.assign(n, 0);
+    skip_.assign(n, -1);
+    // Nodes with no room of their own are full as soon as their children are (children first).
+    for (std::size_t i = 0; i < n; ++i) full_[i] = own_cap_[i] <= 0 && children_full(int(i));
     drained_ = 0;
     std::vector<double> rain(n, 0.0);
     for (std::uint32_t c = 0; c < dh_.cells(); ++c) {
@@ -50,103 +62,77 @@ class Filler {
       else
         rain[r] += d;
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      const DepressionNode& N = nd_[i];
-      if (N.is_leaf()) {
-        H_[i] = rain[i];
-        continue;
-      }
-      double E[2];
-      for (int k = 0; k < 2; ++k) E[k] = close(N.child[k]);
-      for (int k = 0; k < 2; ++k) {
-        const int other = N.child[1 - k];
-        if (E[k] > 0 && H_[other] < cap_[other]) E[k] = pour(N.entry[k] >= 0 ? N.entry[k] : other, E[k], other);
-      }
-      H_[i] = H_[N.child[0]] + H_[N.child[1]];
-      const double extra = E[0] + E[1] + rain[i];
-      if (mode_ == WaterMode::drained && N.ocean_at_birth)
-        drained_ += extra;
-      else
-        add_own(int(i), extra);
-    }
     const int root = int(n) - 1;
-    if (mode_ == WaterMode::drained && !nd_[root].ocean_at_birth && H_[root] > cap_[root]) {
-      drained_ += H_[root] - cap_[root];
-      H_[root] = cap_[root];
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (rain[i] > 0) {
+        const double left = pour(int(i), rain[i], root);
+        drained_ += left;  // beyond the root: only in drained mode (the root reaches infinity)
+      }
     return levels(d);
   }
 
  private:
-  bool full(int i) const { return H_[i] >= cap_[i]; }
+  bool full(int i) const { return full_[i] != 0; }
 
-  void add_own(int i, double v) {
-    H_[i] += v;
-    own_lake_[i] += v;
+  bool children_full(int i) const { return nd_[i].is_leaf() || (full_[nd_[i].child[0]] && full_[nd_[i].child[1]]); }
+
+  // Node i just became full: so may its ancestors whose own room is already used up.
+  void mark_full(int i) {
+    full_[i] = 1;
+    for (int a = nd_[i].parent; a >= 0 && !full_[a] && own_[a] >= own_cap_[a] && children_full(a); a = nd_[a].parent)
+      full_[a] = 1;
   }
 
-  // Caps child c at its spill level; returns the excess that flows over the saddle (0 when it
-  // leaves through infinity in drained mode).
-  double close(int c) {
-    if (mode_ == WaterMode::drained && nd_[c].ocean_at_birth) return 0.0;
-    const double excess = H_[c] - cap_[c];
-    if (excess <= 0) return 0.0;
-    H_[c] = cap_[c];
-    if (mode_ == WaterMode::drained && drains_[c]) {
-      drained_ += excess;
-      return 0.0;
+  // The last node of N's chain of skips (path halving keeps chains short).
+  int follow_skips(int N) {
+    while (skip_[N] >= 0) {
+      const int next = skip_[N];
+      if (skip_[next] >= 0) skip_[N] = skip_[next];
+      N = next;
     }
-    return excess;
+    return N;
+  }
+
+  // Adds up to E to node i's own lake; returns the amount taken.
+  double take(int i, double E) {
+    const double room = own_cap_[i] - own_[i];
+    if (!(room > 0)) return 0.0;
+    if (E >= room) {
+      own_[i] = own_cap_[i];
+      if (children_full(i)) mark_full(i);
+      return room;
+    }
+    own_[i] += E;
+    return E;
   }
 
   // Pours E into the subtree of `top`, entering at node e; returns what does not fit.
   double pour(int e, double E, int top) {
     int N = e;
-    // Enter at a node whose own lake exists (descend past merge nodes with non-full children).
-    while (!nd_[N].is_leaf() && !(full(nd_[N].child[0]) && full(nd_[N].child[1])))
-      N = full(nd_[N].child[0]) ? nd_[N].child[1] : nd_[N].child[0];
-    double absorbed = take(N, E);
-    E -= absorbed;
-    while (N != top) {
+    // Water entering a merge node whose sides are not both full runs down into a side.
+    while (!children_full(N)) N = full(nd_[N].child[0]) ? nd_[N].child[1] : nd_[N].child[0];
+    E -= take(N, E);
+    while (E > 0 && N != top) {
+      if (mode_ == WaterMode::drained && drains_[N]) {
+        drained_ += E;
+        return 0.0;
+      }
+      // Overflow passes unchanged through chains of full nodes with full siblings: jump.
+      // Ancestors have larger indices, so a jump beyond `top` means top is full: return there.
+      if (skip_[N] >= 0) {
+        const int to = follow_skips(N);
+        if (to > top) return E;
+        N = to;
+        continue;
+      }
       const int A = nd_[N].parent;
       const int side = nd_[A].child[0] == N ? 0 : 1;
       const int S = nd_[A].child[1 - side];
-      H_[A] += absorbed;
-      double added = 0;
-      if (E > 0) {
-        if (mode_ == WaterMode::drained && drains_[N]) {
-          drained_ += E;
-          E = 0;
-        } else {
-          if (!full(S)) {
-            const double before = E;
-            E = pour(nd_[A].entry[side] >= 0 ? nd_[A].entry[side] : S, E, S);
-            added += before - E;
-            H_[A] += before - E;
-          }
-          if (E > 0) {
-            const double t = take(A, E);
-            E -= t;
-            added += t;  // take() already added to H_[A]
-          }
-        }
-      }
-      absorbed += added;
+      if (!full(S)) E = pour(nd_[A].entry[side] >= 0 ? nd_[A].entry[side] : S, E, S);
+      if (E > 0) E -= take(A, E);
+      if (full(S) && full(A) && !(mode_ == WaterMode::drained && drains_[N])) skip_[N] = A;
       N = A;
     }
-    return E;
-  }
-
-  // Adds up to E to node i's own lake, limited by its capacity; returns the amount taken.
-  double take(int i, double E) {
-    const double room = cap_[i] - H_[i];
-    if (room <= 0) return 0.0;
-    if (E >= room) {
-      own_lake_[i] += room;
-      H_[i] = cap_[i];
-      return room;
-    }
-    add_own(i, E);
     return E;
   }
 
@@ -160,9 +146,9 @@ class Filler {
         continue;
       }
       if (mode_ == WaterMode::drained && N.ocean_at_birth) continue;
-      const bool has_lake = N.is_leaf() || (full(N.child[0]) && full(N.child[1]));
-      if (!has_lake) continue;
-      double z = dh_.level_for_volume(int(j), std::min(H_[j], cap_[j]));
+      if (!children_full(int(j))) continue;
+      const double held = own_[j] + (N.is_leaf() ? 0.0 : cap_[N.child[0]] + cap_[N.child[1]]);
+      double z = dh_.level_for_volume(int(j), held);
       if (mode_ == WaterMode::drained && N.wraps()) z = std::min(z, N.wrap);
       if (N.parent >= 0) z = std::min(z, nd_[N.parent].level);
       lake[j] = z;
@@ -182,8 +168,9 @@ class Filler {
   const DepressionHierarchy& dh_;
   const std::vector<DepressionNode>& nd_;
   WaterMode mode_;
-  std::vector<double> cap_, H_, own_lake_;
-  std::vector<char> drains_;
+  std::vector<double> cap_, own_cap_, own_;
+  std::vector<char> drains_, full_;
+  std::vector<int> skip_;  // overflow from N passes unchanged to skip_[N]
   double drained_ = 0;
 };
 
