@@ -24,9 +24,11 @@ test: build
 bench: build
 	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3
 	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3 --files
+	$(BUILD_DIR)/bin/wetroad bench water --size 1024
 
 validate: build
 	$(BUILD_DIR)/bin/wetroad bench summits --realizations 100
+	$(BUILD_DIR)/bin/wetroad bench coverage --seeds 10
 
 clean:
 	rm -rf $(BUILD_DIR)

@@ -116,8 +116,9 @@ int run_fill(const FillCli& c) {
       std::printf("  3x3 vs exact      %zu cells differ (max %.3g m)\n", *r.tiling_differing_cells, r.tiling_max_difference);
     if (s.dropouts) std::printf("  note: %zu dropouts were filled before filling with water\n", s.dropouts);
     for (const auto& msg : r.warnings) std::printf("  WARNING: %s\n", msg.c_str());
-    std::printf("%s  (hierarchy %.4f s, water %.4f s, %zu hierarchy nodes)\n", timer.table().c_str(), r.hierarchy_s,
-                r.fill_s, r.hierarchy_nodes);
+    std::printf("%s", timer.table().c_str());
+    if (r.hierarchy_nodes)
+      std::printf("  (depression hierarchy %.4f s, %zu nodes; water %.4f s)\n", r.hierarchy_s, r.hierarchy_nodes, r.fill_s);
   }
   return 0;
 }

@@ -174,6 +174,37 @@ TEST_F(Cli, SynthRefusesAGridThatDoesNotFitInMemory) {
   EXPECT_FALSE(fs::exists(path("s.h5")));
 }
 
+TEST_F(Cli, FillWritesTheWetSurfaceAndItsSummary) {
+  const std::string s = path("s.h5"), w = path("w.h5"), j = path("w.json");
+  ASSERT_EQ(run("synth --size 64 --seed 2 -o " + s).code, 0);
+  CliRun r = run("fill " + s + " --coverage 0.2 -o " + w + " --json " + j);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(j);
+  const auto js = nlohmann::json::parse(f);
+  for (const char* key : {"coverage", "rain_depth", "stored_volume", "drained_volume", "lakes", "mean_depth",
+                          "max_depth", "mode", "tiling", "connectivity"})
+    EXPECT_TRUE(js.contains(key)) << key;
+  EXPECT_NEAR(js["coverage"].get<double>(), 0.2, 1.0 / 4096 + 1e-12);
+  // The wet surface is itself a surface analyze accepts.
+  r = run("analyze " + w + " --json " + path("a.json"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  r = run("fill " + s + " --limit --tiling 3x3 -o " + path("t.h5"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("3x3"), std::string::npos);
+}
+
+TEST_F(Cli, FillRefusesBadRequests) {
+  const std::string s = path("s.h5");
+  ASSERT_EQ(run("synth --size 32 -o " + s).code, 0);
+  for (const std::string args : {"--rain -1", "--rain nan", "--coverage 0.999", "--coverage 1.5", "", "--rain 1e-4 --limit",
+                                 "--rain 1e-4 --connectivity 6", "--limit --stagnant", "--rule cap"}) {
+    const CliRun r = run("fill " + s + " " + args + " -o " + path("w.h5"));
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(path("w.h5"))) << args;
+  }
+}
+
 TEST_F(Cli, MissingFile) { expect_bad_input(path("nope.h5"), "no such file"); }
 
 TEST_F(Cli, NotHdf5) {

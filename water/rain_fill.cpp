@@ -27,6 +27,7 @@ WaterState state_from_levels(const HeightMap& m, BigVector level, double rain, i
   WaterState w;
   w.level = std::move(level);
   w.rain_depth = rain;
+  w.drained_volume = NAN;  // a level field alone says nothing about what drained
   summarize_water(GridTopology(m.nx, m.ny, m.dx, m.dy, connectivity, Boundary::torus), ground_of(m), w);
   return w;
 }
