@@ -149,19 +149,17 @@ DepressionHierarchy::DepressionHierarchy(const HeightMap& map, int connectivity,
         continue;
       }
       if (!active[nb.cell] || nb.cell == c) continue;
-      std::int32_t cx, cy, nxo, nyo;
-      const std::uint32_t rc = uf.find(c, cx, cy);
-      const std::uint32_t rn = uf.find(nb.cell, nxo, nyo);
+      const LiftedUnionFind::Edge e = uf.edge(c, nb);
+      const std::uint32_t rc = e.rc, rn = e.rn;
       if (rc == rn) {
         // The same component reached again: through a different copy of the neighbour?
-        if (!wrapped[rc] && (nxo - cx != nb.sx || nyo - cy != nb.sy)) mark_wrapped(rc, hc);
+        if (!wrapped[rc] && LiftedUnionFind::wraps(e, nb)) mark_wrapped(rc, hc);
         continue;
       }
       if (top[rc] < 0) {  // c alone so far: it simply joins the neighbour's component
-        uf.parent[c] = rn;
-        uf.ox[c] = nxo - nb.sx;
-        uf.oy[c] = nyo - nb.sy;
-        uf.size[rn] += 1;
+        const std::uint32_t root = uf.unite(e, nb);
+        top[root] = top[rn];
+        wrapped[root] = wrapped[rn];
         continue;
       }
       // Two depressions meet at saddle c: a merge node.
@@ -174,19 +172,7 @@ DepressionHierarchy::DepressionHierarchy(const HeightMap& map, int connectivity,
       nodes_[p].ocean_at_birth = wrapped[rc] || wrapped[rn];
       nodes_[a].parent = p;
       nodes_[b].parent = p;
-      std::uint32_t big = rc, small = rn;
-      std::int32_t offx = nxo - nb.sx - cx, offy = nyo - nb.sy - cy;  // lift(rc) - lift(rn)
-      // lift(rn) relative to lift(rc): -(offx, offy)
-      if (uf.size[rc] < uf.size[rn]) {
-        std::swap(big, small);
-      } else {
-        offx = -offx;
-        offy = -offy;
-      }
-      uf.parent[small] = big;
-      uf.ox[small] = offx;
-      uf.oy[small] = offy;
-      uf.size[big] += uf.size[small];
+      const std::uint32_t big = uf.unite(e, nb);
       wrapped[big] = wrapped[rc] || wrapped[rn];
       top[big] = p;
     }

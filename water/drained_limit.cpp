@@ -38,11 +38,10 @@ BigVector drained_limit_levels(const HeightMap& map, int connectivity, Boundary 
         continue;
       }
       if (!active[nb.cell] || nb.cell == c) continue;
-      std::int32_t cx, cy, nxo, nyo;
-      const std::uint32_t rc = uf.find(c, cx, cy);
-      const std::uint32_t rn = uf.find(nb.cell, nxo, nyo);
+      const LiftedUnionFind::Edge e = uf.edge(c, nb);
+      const std::uint32_t rc = e.rc, rn = e.rn;
       if (rc == rn) {
-        if (!wrapped[rc] && (nxo - cx != nb.sx || nyo - cy != nb.sy)) drain_all(rc, hc);
+        if (!wrapped[rc] && LiftedUnionFind::wraps(e, nb)) drain_all(rc, hc);
         continue;
       }
       const bool w = wrapped[rc] || wrapped[rn];
@@ -50,18 +49,7 @@ BigVector drained_limit_levels(const HeightMap& map, int connectivity, Boundary 
         if (!wrapped[rc]) drain_all(rc, hc);
         if (!wrapped[rn]) drain_all(rn, hc);
       }
-      std::uint32_t big = rc, small = rn;
-      std::int32_t offx = nxo - nb.sx - cx, offy = nyo - nb.sy - cy;  // lift(rc) - lift(rn)
-      if (uf.size[rc] < uf.size[rn]) {
-        std::swap(big, small);
-      } else {
-        offx = -offx;
-        offy = -offy;
-      }
-      uf.parent[small] = big;
-      uf.ox[small] = offx;
-      uf.oy[small] = offy;
-      uf.size[big] += uf.size[small];
+      const std::uint32_t big = uf.unite(e, nb), small = big == rc ? rn : rc;
       if (!w) {  // concatenate member lists
         next[tail[big]] = small;
         tail[big] = tail[small];

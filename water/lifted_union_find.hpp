@@ -1,6 +1,9 @@
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
+
+#include "water/grid_topology.hpp"
 
 namespace wr {
 
@@ -37,6 +40,40 @@ struct LiftedUnionFind {
     dx = sx;
     dy = sy;
     return r;
+  }
+
+  // An edge from cell c to its neighbour nb (both in the structure): their roots, and whether
+  // they are one component reached through a different periodic copy of nb (a wrap).
+  struct Edge {
+    std::uint32_t rc, rn;
+    std::int32_t cx, cy, nx, ny;  // offsets of c and nb relative to their roots
+  };
+  Edge edge(std::uint32_t c, const Neighbour& nb) {
+    Edge e;
+    e.rc = find(c, e.cx, e.cy);
+    e.rn = find(nb.cell, e.nx, e.ny);
+    return e;
+  }
+  // Same component, different copy of the neighbour: the component wraps around the torus.
+  static bool wraps(const Edge& e, const Neighbour& nb) {
+    return e.rc == e.rn && (e.nx - e.cx != nb.sx || e.ny - e.cy != nb.sy);
+  }
+  // Unites the two components of an edge with distinct roots (smaller under larger, with the
+  // offset that puts c's copy next to nb's); returns the new root.
+  std::uint32_t unite(const Edge& e, const Neighbour& nb) {
+    std::uint32_t big = e.rc, small = e.rn;
+    std::int32_t offx = e.nx - nb.sx - e.cx, offy = e.ny - nb.sy - e.cy;  // lift(rc) - lift(rn)
+    if (size[e.rc] < size[e.rn]) {
+      std::swap(big, small);
+    } else {
+      offx = -offx;
+      offy = -offy;
+    }
+    parent[small] = big;
+    ox[small] = offx;
+    oy[small] = offy;
+    size[big] += size[small];
+    return big;
   }
 };
 
