@@ -316,6 +316,18 @@ TEST(WaterRequests, BadInputsAreRefused) {
   EXPECT_THROW(fill_water(holes, r), InputError);
 }
 
+TEST(WaterRequests, CoverageTargetInsideAJumpIsReported) {
+  // A flat-bottomed pool covers 64/400 = 16% with the first drop: 10% lies inside the jump.
+  const HeightMap m = make_map(20, 20, [](long x, long y) { return (x >= 6 && x < 14 && y >= 6 && y < 14) ? 0.0 : 1.0; });
+  FillRequest r;
+  r.coverage = 0.10;
+  const FillResult f = fill_water(m, r);
+  EXPECT_TRUE(f.target_in_jump);
+  EXPECT_DOUBLE_EQ(f.jump_low, 0.0);
+  EXPECT_DOUBLE_EQ(f.jump_high, 0.16);
+  EXPECT_FALSE(f.warnings.empty());
+}
+
 TEST(WaterRequests, CoverageTargetIsMetWithinOneCell) {
   const HeightMap m = random_surface(11, 64);
   FillRequest r;
