@@ -1,0 +1,20 @@
+#pragma once
+// RAII PETSc (and MPI) initialisation for the commands and tests that use the FEM solver.
+// Only those initialise MPI: the texture and water commands stay plain serial programs.
+#include <petscsys.h>
+
+#include <stdexcept>
+
+namespace wr {
+
+class PetscSession {
+ public:
+  PetscSession(int* argc, char*** argv) {
+    if (PetscInitialize(argc, argv, nullptr, nullptr) != 0) throw std::runtime_error("PetscInitialize failed");
+  }
+  ~PetscSession() { PetscFinalize(); }
+  PetscSession(const PetscSession&) = delete;
+  PetscSession& operator=(const PetscSession&) = delete;
+};
+
+}  // namespace wr
