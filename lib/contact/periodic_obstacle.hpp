@@ -1,0 +1,50 @@
+#pragma once
+// A rigid periodic obstacle given by a height map, triangulated on its lattice (each cell
+// split along the diagonal from (i, j) to (i+1, j+1), thesis sec. 4.2.3), with the ray casting
+// that measures normal gaps: a ray's xy projection is walked cell by cell through the lattice
+// (Amanatides-Woo traversal, the continuous form of the thesis's Bresenham walk), and only the
+// two triangles of each visited cell are tested (Moller-Trumbore). The obstacle repeats with
+// periods Lx = nx dx, Ly = ny dy; no copy is made.
+#include <optional>
+
+#include "lib/core/height_map.hpp"
+#include "lib/core/vec3.hpp"
+
+namespace wr {
+
+struct RayHit {
+  double t = 0;      // signed distance along the (unit) direction: > 0 ahead, < 0 behind
+  Vec3 point;        // m
+  Vec3 normal;       // unit upward normal of the hit triangle
+};
+
+class PeriodicObstacle {
+ public:
+  explicit PeriodicObstacle(const HeightMap& surface);  // periodic map, heights in m
+
+  double lx() const { return nx_ * dx_; }
+  double ly() const { return ny_ * dy_; }
+  // Height of the triangulated surface at (x, y), any x, y (periodic).
+  double height(double x, double y) const;
+  // Upward unit normal of the triangle under (x, y).
+  Vec3 normal(double x, double y) const;
+  double max_height() const { return max_h_; }
+
+  // The intersection nearest to p along the line p + t d (d need not be unit; t is reported
+  // in units of |d|), searching ahead and behind up to |t| <= max_distance. None if the line
+  // meets the surface nowhere within that distance.
+  std::optional<RayHit> cast(const Vec3& p, const Vec3& d, double max_distance) const;
+
+ private:
+  double h(long i, long j) const;  // lattice height with periodic wrap
+  // First hit along p + t d for t in [0, tmax] (d unit); walks the cells.
+  std::optional<RayHit> cast_forward(const Vec3& p, const Vec3& d, double tmax) const;
+  bool hit_cell(long ci, long cj, const Vec3& p, const Vec3& d, double tmax, RayHit& best) const;
+
+  std::size_t nx_, ny_;
+  double dx_, dy_;
+  BigVector z_;
+  double max_h_ = 0;
+};
+
+}  // namespace wr

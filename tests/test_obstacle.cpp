@@ -1,0 +1,89 @@
+// Periodic triangulated obstacle: interpolation, normals, and ray casting against brute force.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "lib/contact/periodic_obstacle.hpp"
+
+namespace wr {
+namespace {
+
+HeightMap random_map(std::size_t nx, std::size_t ny, std::uint64_t seed, double amp) {
+  HeightMap m(nx, ny, 1e-4, 2e-4);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-amp, amp);
+  for (double& v : m.h) v = u(rng);
+  return m;
+}
+
+TEST(Obstacle, InterpolatesLatticeValuesAndIsPeriodic) {
+  const HeightMap m = random_map(7, 5, 1, 1e-4);
+  const PeriodicObstacle o(m);
+  for (std::size_t j = 0; j < 5; ++j)
+    for (std::size_t i = 0; i < 7; ++i) {
+      EXPECT_DOUBLE_EQ(o.height(i * 1e-4, j * 2e-4), m(i, j));
+      EXPECT_NEAR(o.height(i * 1e-4 + o.lx(), j * 2e-4 - 3 * o.ly()), m(i, j), 1e-18);
+    }
+  // Inside a cell the surface is linear on each triangle: the mid-point of the diagonal.
+  EXPECT_NEAR(o.height(0.5e-4, 1e-4), 0.5 * (m(0, 0) + m(1, 1)), 1e-18);
+}
+
+TEST(Obstacle, PlaneHasExactNormalsAndVerticalGaps) {
+  // A plane z = 0.2 x + 0.1 y is linear on every triangle (test away from the seam).
+  HeightMap m(20, 20, 1e-4, 1e-4);
+  for (std::size_t j = 0; j < 20; ++j)
+    for (std::size_t i = 0; i < 20; ++i) m(i, j) = 0.2 * i * 1e-4 + 0.1 * j * 1e-4;
+  const PeriodicObstacle o(m);
+  const Vec3 n = o.normal(5.3e-4, 7.1e-4);
+  const Vec3 expect = Vec3{-0.2, -0.1, 1}.unit();
+  EXPECT_NEAR(n.x, expect.x, 1e-12);
+  EXPECT_NEAR(n.y, expect.y, 1e-12);
+  EXPECT_NEAR(n.z, expect.z, 1e-12);
+  const Vec3 p{5.3e-4, 7.1e-4, 1e-3};
+  const auto hit = o.cast(p, Vec3{0, 0, -1}, 1.0);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 1e-3 - (0.2 * 5.3e-4 + 0.1 * 7.1e-4), 1e-15);
+  // Along the surface normal the distance is the perpendicular distance to the plane.
+  const auto hn = o.cast(p, expect * -1.0, 1.0);
+  ASSERT_TRUE(hn);
+  const double perp = (1e-3 - 0.2 * 5.3e-4 - 0.1 * 7.1e-4) / std::sqrt(1 + 0.04 + 0.01);
+  EXPECT_NEAR(hn->t, perp, 1e-15);
+  // A point below the surface: the hit is behind (negative t), i.e. penetration.
+  const auto below = o.cast(Vec3{5.3e-4, 7.1e-4, 0.0}, Vec3{0, 0, -1}, 1.0);
+  ASSERT_TRUE(below);
+  EXPECT_LT(below->t, 0);
+}
+
+// Oblique rays over a rough periodic surface, crossing the seams: the reported hit lies on the
+// surface and is the first sign change of z - h along the ray (fine brute-force march).
+TEST(Obstacle, ObliqueRaysFindTheFirstCrossingAcrossSeams) {
+  const HeightMap m = random_map(16, 12, 7, 1e-4);
+  const PeriodicObstacle o(m);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> ux(-o.lx(), 2 * o.lx()), uy(-o.ly(), 2 * o.ly()), ud(-1, 1);
+  int tested = 0;
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 p{ux(rng), uy(rng), 3e-4};
+    const Vec3 d = Vec3{ud(rng), ud(rng), -0.3 - std::abs(ud(rng))}.unit();
+    const auto hit = o.cast(p, d, 0.05);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->point.z, o.height(hit->point.x, hit->point.y), 1e-12);
+    // March from p in steps of 1e-7 m until z drops below the surface.
+    double t = 0;
+    while (p.z + d.z * t - o.height(p.x + d.x * t, p.y + d.y * t) > 0) t += 1e-7;
+    EXPECT_NEAR(hit->t, t, 1.1e-7);
+    ++tested;
+  }
+  EXPECT_EQ(tested, 300);
+}
+
+TEST(Obstacle, FarObstacleIsNotFound) {
+  const HeightMap m = random_map(8, 8, 2, 1e-5);
+  const PeriodicObstacle o(m);
+  EXPECT_FALSE(o.cast(Vec3{1e-4, 1e-4, 1.0}, Vec3{0, 0, -1}, 0.5));
+  EXPECT_TRUE(o.cast(Vec3{1e-4, 1e-4, 1.0}, Vec3{0, 0, -1}, 1.5));
+}
+
+}  // namespace
+}  // namespace wr
