@@ -117,6 +117,23 @@ std::optional<RayHit> PeriodicObstacle::cast_forward(const Vec3& p, const Vec3& 
   return best;
 }
 
+Vec3 PeriodicObstacle::contact_normal(const Vec3& q) const {
+  // On an edge or a vertex of the triangulation the normal is not defined: use the angle-
+  // weighted mean of the triangles around it (sampled in 8 directions), so that a node resting
+  // exactly on a crest vertex feels no spurious sideways push.
+  const double fx = q.x / dx_, fy = q.y / dy_;
+  const double u = fx - std::floor(fx), v = fy - std::floor(fy);
+  const double eps = 1e-9;
+  const bool on_edge = u < eps || u > 1 - eps || v < eps || v > 1 - eps || std::abs(u - v) < eps;
+  if (!on_edge) return normal(q.x, q.y);
+  Vec3 sum;
+  for (int k = 0; k < 8; ++k) {
+    const double a = (k + 0.5) * M_PI / 4;
+    sum = sum + normal(q.x + 1e-6 * dx_ * std::cos(a), q.y + 1e-6 * dy_ * std::sin(a));
+  }
+  return sum.unit();
+}
+
 std::optional<RayHit> PeriodicObstacle::cast(const Vec3& p, const Vec3& d, double max_distance) const {
   const double len = d.norm();
   const Vec3 u = d * (1.0 / len);
@@ -128,7 +145,10 @@ std::optional<RayHit> PeriodicObstacle::cast(const Vec3& p, const Vec3& d, doubl
     best = ahead;
   else
     best = behind;
-  if (best) best->t /= len;
+  if (best) {
+    best->t /= len;
+    best->normal = contact_normal(best->point);
+  }
   return best;
 }
 

@@ -15,7 +15,7 @@ namespace wr {
 struct RayHit {
   double t = 0;      // signed distance along the (unit) direction: > 0 ahead, < 0 behind
   Vec3 point;        // m
-  Vec3 normal;       // unit upward normal of the hit triangle
+  Vec3 normal;       // unit upward contact normal at the hit (see contact_normal)
 };
 
 class PeriodicObstacle {
@@ -29,6 +29,9 @@ class PeriodicObstacle {
   // Upward unit normal of the triangle under (x, y).
   Vec3 normal(double x, double y) const;
   double max_height() const { return max_h_; }
+  // Normal used for contact at a surface point: the triangle's, or on an edge or vertex the
+  // angle-weighted mean of the triangles around it.
+  Vec3 contact_normal(const Vec3& q) const;
 
   // The intersection nearest to p along the line p + t d (d need not be unit; t is reported
   // in units of |d|), searching ahead and behind up to |t| <= max_distance. None if the line

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace wr {
 namespace {
@@ -52,17 +53,33 @@ ElementMatrix brick_stiffness(double hx, double hy, double hz, double E, double 
 
 }  // namespace
 
+// Householder reflection with Q e_z = n (symmetric, orthogonal), row-major.
+std::array<double, 9> frame_of(const Vec3& n) {
+  std::array<double, 9> q{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const Vec3 w{-n.x, -n.y, 1 - n.z};  // e_z - n
+  const double ww = w.dot(w);
+  if (ww < 1e-30) return q;
+  const double wv[3] = {w.x, w.y, w.z};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) q[r * 3 + c] -= 2 * wv[r] * wv[c] / ww;
+  return q;
+}
+
 struct ElasticBlock::Impl {
   BlockSpec spec;
   DM da = nullptr;
   Mat K = nullptr;
+  Vec u = nullptr;  // current displacement, carried from load step to load step
   std::vector<double> z;  // node heights, k = 0..nz
   PetscInt xs, ys, zs, xm, ym, zm;
   PetscInt rstart = 0;
+  std::vector<char> active;  // per owned bottom node, carried between solves
 
   PetscInt global_dof(PetscInt i, PetscInt j, PetscInt k, int c) const {
     return rstart + 3 * ((k - zs) * xm * ym + (j - ys) * xm + (i - xs)) + c;
   }
+  double hx() const { return spec.lx / spec.nx; }
+  double hy() const { return spec.ly / spec.ny; }
 
   void make_grid() {
     const PetscInt M = spec.nx + 1, N = spec.ny + 1, P = spec.nz + 1;
@@ -79,13 +96,12 @@ struct ElasticBlock::Impl {
   void assemble() {
     check(DMCreateMatrix(da, &K), "DMCreateMatrix");
     check(MatSetOption(K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
-    const double hx = spec.lx / spec.nx, hy = spec.ly / spec.ny;
     std::map<int, ElementMatrix> layer;  // one element matrix per layer thickness
     MatStencil rows[24];
     for (PetscInt k = zs; k < std::min<PetscInt>(zs + zm, spec.nz); ++k) {
       auto it = layer.find(int(k));
       if (it == layer.end())
-        it = layer.emplace(int(k), brick_stiffness(hx, hy, z[k + 1] - z[k], spec.young, spec.poisson)).first;
+        it = layer.emplace(int(k), brick_stiffness(hx(), hy(), z[k + 1] - z[k], spec.young, spec.poisson)).first;
       for (PetscInt j = ys; j < std::min<PetscInt>(ys + ym, spec.ny); ++j)
         for (PetscInt i = xs; i < std::min<PetscInt>(xs + xm, spec.nx); ++i) {
           for (int a = 0; a < 8; ++a)
@@ -102,6 +118,8 @@ struct ElasticBlock::Impl {
     check(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     check(MatGetOwnershipRange(K, &rstart, nullptr), "MatGetOwnershipRange");
+    check(DMCreateGlobalVector(da, &u), "DMCreateGlobalVector");
+    check(VecSet(u, 0.0), "VecSet");
   }
 };
 
@@ -112,6 +130,7 @@ ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
 }
 
 ElasticBlock::~ElasticBlock() {
+  if (impl_->u) VecDestroy(&impl_->u);
   if (impl_->K) MatDestroy(&impl_->K);
   if (impl_->da) DMDestroy(&impl_->da);
   delete impl_;
@@ -121,30 +140,47 @@ std::size_t ElasticBlock::nodes() const {
   return std::size_t(impl_->spec.nx + 1) * (impl_->spec.ny + 1) * (impl_->spec.nz + 1);
 }
 
+namespace {
+
+struct FaceNode {
+  PetscInt i, j;
+  PetscInt row[3];  // global dofs
+  Vec3 x0;          // reference position
+  Vec3 normal{0, 0, 1};  // obstacle normal N of the current linearisation
+  double g = -INFINITY;  // bound on N . u (-inf: no obstacle within reach)
+};
+
+// Block-diagonal rotation: Q(N) on the face nodes, identity elsewhere; same pattern always.
+void fill_rotation(Mat R, PetscInt rstart, PetscInt rend, const std::vector<FaceNode>& face) {
+  for (PetscInt r = rstart; r < rend; r += 3)
+    for (int c = 0; c < 3; ++c) MatSetValue(R, r + c, r + c, 1.0, INSERT_VALUES);
+  for (const FaceNode& f : face) {
+    const auto q = frame_of(f.normal);
+    MatSetValues(R, 3, f.row, 3, f.row, q.data(), INSERT_VALUES);
+  }
+  MatAssemblyBegin(R, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(R, MAT_FINAL_ASSEMBLY);
+}
+
+}  // namespace
+
 ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   Impl& m = *impl_;
   const BlockSpec& s = m.spec;
-  const double hx = s.lx / s.nx, hy = s.ly / s.ny;
   ContactSolution out;
   out.face_nodes = std::size_t(s.nx + 1) * (s.ny + 1);
+  PetscInt rend;
+  check(MatGetOwnershipRange(m.K, nullptr, &rend), "MatGetOwnershipRange");
 
-  // Gap of every owned bottom node: u_z >= g = obstacle - max(obstacle).
-  struct BottomNode {
-    PetscInt row;  // global z dof
-    double g;
-  };
-  std::vector<BottomNode> bottom;
-  double local_max = -INFINITY;
+  std::vector<FaceNode> face;
   if (m.zs == 0)
     for (PetscInt j = m.ys; j < m.ys + m.ym; ++j)
       for (PetscInt i = m.xs; i < m.xs + m.xm; ++i) {
-        const double h = load.obstacle ? load.obstacle(i * hx, j * hy) : 0.0;
-        bottom.push_back({m.global_dof(i, j, 0, 2), h});
-        local_max = std::max(local_max, h);
+        FaceNode f{i, j, {m.global_dof(i, j, 0, 0), m.global_dof(i, j, 0, 1), m.global_dof(i, j, 0, 2)},
+                   Vec3{i * m.hx(), j * m.hy(), 0.0}};
+        face.push_back(f);
       }
-  double hmax = 0;
-  MPI_Allreduce(&local_max, &hmax, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-  for (auto& b : bottom) b.g -= hmax;
+  if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
 
   // Prescribed top dofs and the minimal pins of a frictionless top.
   std::vector<PetscInt> fixed_rows;
@@ -160,8 +196,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
           fixed_vals.push_back(c == 0 ? load.ux : (c == 1 ? 0.0 : -load.uz));
         }
   if (load.top == TopCondition::frictionless && m.zs == 0) {
-    // Rigid in-plane motion is free: pin u_x, u_y at (0,0,0) and u_y at (nx,0,0).
-    if (m.xs == 0 && m.ys == 0) {
+    if (m.xs == 0 && m.ys == 0) {  // in-plane rigid motion is free: pin it
       fixed_rows.insert(fixed_rows.end(), {m.global_dof(0, 0, 0, 0), m.global_dof(0, 0, 0, 1)});
       fixed_vals.insert(fixed_vals.end(), {0.0, 0.0});
     }
@@ -170,103 +205,227 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       fixed_vals.push_back(0.0);
     }
   }
+  check(VecSetValues(m.u, PetscInt(fixed_rows.size()), fixed_rows.data(), fixed_vals.data(), INSERT_VALUES), "VecSetValues");
+  check(VecAssemblyBegin(m.u), "VecAssemblyBegin");
+  check(VecAssemblyEnd(m.u), "VecAssemblyEnd");
 
-  Vec u, b, r;
-  check(DMCreateGlobalVector(m.da, &u), "DMCreateGlobalVector");
-  check(VecDuplicate(u, &b), "VecDuplicate");
-  check(VecDuplicate(u, &r), "VecDuplicate");
-  Mat A;
-  check(MatDuplicate(m.K, MAT_COPY_VALUES, &A), "MatDuplicate");
+  Mat R, Khat = nullptr, A = nullptr;
+  check(MatCreate(PETSC_COMM_WORLD, &R), "MatCreate");
+  check(MatSetSizes(R, rend - m.rstart, rend - m.rstart, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetType(R, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(R, 3), "MatSetBlockSize");
+  check(MatSeqAIJSetPreallocation(R, 3, nullptr), "MatSeqAIJSetPreallocation");
+  check(MatMPIAIJSetPreallocation(R, 3, nullptr, 0, nullptr), "MatMPIAIJSetPreallocation");
+  Vec uh, b, r, diag, ustar, ulocal;
+  check(VecDuplicate(m.u, &uh), "VecDuplicate");
+  check(VecDuplicate(m.u, &b), "VecDuplicate");
+  check(VecDuplicate(m.u, &r), "VecDuplicate");
+  check(VecDuplicate(m.u, &diag), "VecDuplicate");
+  check(VecDuplicate(m.u, &ustar), "VecDuplicate");
+  check(DMCreateLocalVector(m.da, &ulocal), "DMCreateLocalVector");
   KSP ksp;
   check(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
   check(PCSetType(pc, PCGAMG), "PCSetType");
-  check(KSPSetTolerances(ksp, load.ksp_rtol, 1e-300, PETSC_DEFAULT, 10000), "KSPSetTolerances");
+  check(KSPSetTolerances(ksp, load.ksp_rtol, 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
   check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
 
-  // Diagonal scale for the active-set test R + c (g - u) > 0.
-  Vec diag;
-  check(VecDuplicate(u, &diag), "VecDuplicate");
-  check(MatGetDiagonal(m.K, diag), "MatGetDiagonal");
-
-  std::vector<char> active(bottom.size(), 0);
-  for (std::size_t n = 0; n < bottom.size(); ++n) active[n] = bottom[n].g >= 0;  // the touching point(s)
-  for (int it = 0; it < load.max_active_set_iterations; ++it) {
-    out.active_set_iterations = it + 1;
-    // Elimination: prescribed values into u, rows and columns of A zeroed with unit diagonal.
-    std::vector<PetscInt> rows = fixed_rows;
-    std::vector<double> vals = fixed_vals;
-    for (std::size_t n = 0; n < bottom.size(); ++n)
-      if (active[n]) {
-        rows.push_back(bottom[n].row);
-        vals.push_back(bottom[n].g);
+  const double reach = std::max(s.lz, 1e-12);  // rays look this far for the obstacle
+  const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
+  for (int outer = 0; outer < outer_max; ++outer) {
+    out.outer_iterations = outer + 1;
+    // 1. Linearise the contact at the current configuration.
+    check(DMGlobalToLocal(m.da, m.u, INSERT_VALUES, ulocal), "DMGlobalToLocal");
+    PetscScalar**** ul;
+    check(DMDAVecGetArrayDOFRead(m.da, ulocal, &ul), "DMDAVecGetArrayDOFRead");
+    PetscInt gxs, gys, gzs, gxm, gym, gzm;
+    DMDAGetGhostCorners(m.da, &gxs, &gys, &gzs, &gxm, &gym, &gzm);
+    auto X = [&](PetscInt i, PetscInt j) {
+      i = std::clamp(i, gxs, gxs + gxm - 1);
+      j = std::clamp(j, gys, gys + gym - 1);
+      return Vec3{i * m.hx() + ul[0][j][i][0], j * m.hy() + ul[0][j][i][1], ul[0][j][i][2]};
+    };
+    for (FaceNode& f : face) {
+      if (!load.obstacle) {
+        f.normal = {0, 0, 1};
+        f.g = 0.0;
+        continue;
       }
-    check(VecSetValues(u, PetscInt(rows.size()), rows.data(), vals.data(), INSERT_VALUES), "VecSetValues");
-    check(VecAssemblyBegin(u), "VecAssemblyBegin");
-    check(VecAssemblyEnd(u), "VecAssemblyEnd");
-    check(MatCopy(m.K, A, SAME_NONZERO_PATTERN), "MatCopy");
-    check(VecSet(b, 0.0), "VecSet");
-    check(MatZeroRowsColumns(A, PetscInt(rows.size()), rows.data(), 1.0, u, b), "MatZeroRowsColumns");
-    check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
-    check(KSPSolve(ksp, b, u), "KSPSolve");
-    KSPConvergedReason reason;
-    check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
-    PetscInt its;
-    check(KSPGetIterationNumber(ksp, &its), "KSPGetIterationNumber");
-    out.linear_iterations += int(its);
-    if (reason < 0) {
-      out.message = "linear solve failed (KSP reason " + std::to_string(int(reason)) + ")";
+      if (!load.follow_geometry) {
+        f.normal = {0, 0, 1};
+        f.g = load.obstacle->height(f.x0.x, f.x0.y);
+        continue;
+      }
+      const Vec3 here = X(f.i, f.j);
+      // Outward normal of the deformed face (pointing down), from the neighbours' positions.
+      const Vec3 t1 = X(std::min<PetscInt>(f.i + 1, s.nx), f.j) - X(std::max<PetscInt>(f.i - 1, 0), f.j);
+      const Vec3 t2 = X(f.i, std::min<PetscInt>(f.j + 1, s.ny)) - X(f.i, std::max<PetscInt>(f.j - 1, 0));
+      const Vec3 n = t2.cross(t1).unit();
+      const auto hit = load.obstacle->cast(here, n, reach);
+      if (!hit) {
+        f.normal = {0, 0, 1};
+        f.g = -INFINITY;
+        continue;
+      }
+      f.normal = hit->normal;
+      f.g = hit->normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q
+    }
+    DMDAVecRestoreArrayDOFRead(m.da, ulocal, &ul);
+
+    // 2. Rotate the face nodes into their constraint frames: Khat = R^T K R, uh = R^T u.
+    check(MatZeroEntries(R), "MatZeroEntries");
+    fill_rotation(R, m.rstart, rend, face);
+    check(MatPtAP(m.K, R, Khat ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &Khat), "MatPtAP");
+    check(MatSetBlockSize(Khat, 3), "MatSetBlockSize");
+    if (!A) check(MatDuplicate(Khat, MAT_COPY_VALUES, &A), "MatDuplicate");
+    check(MatGetDiagonal(Khat, diag), "MatGetDiagonal");
+    check(MatMultTranspose(R, m.u, uh), "MatMultTranspose");
+
+    // 3. Primal-dual active set on the bounds uh_z >= g at the face nodes.
+    bool pdas_ok = false;
+    std::size_t contact = 0;
+    {
+      const PetscScalar* a;
+      VecGetArrayRead(uh, &a);
+      for (std::size_t n = 0; n < face.size(); ++n)
+        if (std::isfinite(face[n].g) && a[face[n].row[2] - m.rstart] <= face[n].g) m.active[n] = 1;
+        else if (!std::isfinite(face[n].g)) m.active[n] = 0;
+      VecRestoreArrayRead(uh, &a);
+    }
+    for (int it = 0; it < load.max_active_set_iterations; ++it) {
+      ++out.active_set_iterations;
+      std::vector<PetscInt> rows = fixed_rows;
+      std::vector<double> vals = fixed_vals;
+      for (std::size_t n = 0; n < face.size(); ++n)
+        if (m.active[n]) {
+          rows.push_back(face[n].row[2]);
+          vals.push_back(face[n].g);
+        }
+      check(VecSetValues(uh, PetscInt(rows.size()), rows.data(), vals.data(), INSERT_VALUES), "VecSetValues");
+      check(VecAssemblyBegin(uh), "VecAssemblyBegin");
+      check(VecAssemblyEnd(uh), "VecAssemblyEnd");
+      check(MatCopy(Khat, A, SAME_NONZERO_PATTERN), "MatCopy");
+      check(VecSet(b, 0.0), "VecSet");
+      check(MatZeroRowsColumns(A, PetscInt(rows.size()), rows.data(), 1.0, uh, b), "MatZeroRowsColumns");
+      check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+      check(KSPSolve(ksp, b, uh), "KSPSolve");
+      KSPConvergedReason reason;
+      PetscInt its;
+      KSPGetConvergedReason(ksp, &reason);
+      KSPGetIterationNumber(ksp, &its);
+      out.linear_iterations += int(its);
+      if (reason < 0) {
+        out.message = "linear solve failed (KSP reason " + std::to_string(int(reason)) + ") in Signorini iteration " +
+                      std::to_string(outer + 1);
+        break;
+      }
+      check(MatMult(Khat, uh, r), "MatMult");  // reactions in the rotated frames
+      const PetscScalar *ra, *ua, *da;
+      VecGetArrayRead(r, &ra);
+      VecGetArrayRead(uh, &ua);
+      VecGetArrayRead(diag, &da);
+      int changed = 0;
+      contact = 0;
+      for (std::size_t n = 0; n < face.size(); ++n) {
+        if (!std::isfinite(face[n].g)) continue;
+        const PetscInt l = face[n].row[2] - m.rstart;
+        const bool now = ra[l] + da[l] * (face[n].g - ua[l]) > 0;
+        changed |= now != bool(m.active[n]);
+        m.active[n] = now;
+        contact += now;
+      }
+      VecRestoreArrayRead(r, &ra);
+      VecRestoreArrayRead(uh, &ua);
+      VecRestoreArrayRead(diag, &da);
+      int any = 0;
+      MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+      if (!any) {
+        pdas_ok = true;
+        break;
+      }
+    }
+    if (!pdas_ok) {
+      if (out.message.empty())
+        out.message = "active set still changing after " + std::to_string(load.max_active_set_iterations) +
+                      " iterations in Signorini iteration " + std::to_string(outer + 1);
       break;
     }
-    // Reactions R = K u (no body forces) and the new active set.
-    check(MatMult(m.K, u, r), "MatMult");
-    const PetscScalar *ru, *rr, *rd;
-    check(VecGetArrayRead(u, &ru), "VecGetArrayRead");
-    check(VecGetArrayRead(r, &rr), "VecGetArrayRead");
-    check(VecGetArrayRead(diag, &rd), "VecGetArrayRead");
-    int changed = 0;
-    double pen = 0;
-    std::size_t contact = 0;
-    for (std::size_t n = 0; n < bottom.size(); ++n) {
-      const PetscInt l = bottom[n].row - m.rstart;
-      const bool now = rr[l] + rd[l] * (bottom[n].g - ru[l]) > 0;
-      changed |= now != bool(active[n]);
-      active[n] = now;
-      contact += now;
-      pen = std::max(pen, bottom[n].g - ru[l]);
-    }
-    double fz = 0, fx = 0, fy = 0;
-    for (PetscInt row : top_rows[0]) fx += rr[row - m.rstart];
-    for (PetscInt row : top_rows[1]) fy += rr[row - m.rstart];
-    for (PetscInt row : top_rows[2]) fz -= rr[row - m.rstart];
-    VecRestoreArrayRead(u, &ru);
-    VecRestoreArrayRead(r, &rr);
-    VecRestoreArrayRead(diag, &rd);
-    double local[4] = {fx, fy, fz, double(contact)}, global[4];
-    MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    int any_changed = 0;
-    MPI_Allreduce(&changed, &any_changed, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
-    MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-    out.fx = global[0];
-    out.fy = global[1];
-    out.fz = global[2];
-    out.contact_nodes = std::size_t(global[3]);
-    if (!any_changed) {
+    double ct = double(contact), ctot;
+    MPI_Allreduce(&ct, &ctot, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    out.contact_nodes = std::size_t(ctot);
+
+    // 4. Damped correction and its size on the contact face.
+    check(MatMult(R, uh, ustar), "MatMult");
+    const double alpha = load.follow_geometry ? load.damping : 1.0;
+    const PetscScalar* us;
+    PetscScalar* uc;
+    VecGetArrayRead(ustar, &us);
+    VecGetArray(m.u, &uc);
+    double dc = 0, du = 0;
+    for (const FaceNode& f : face)
+      for (int c = 0; c < 3; ++c) {
+        const PetscInt l = f.row[c] - m.rstart;
+        const double corr = us[l] - uc[l];
+        dc += corr * corr;
+        du += (uc[l] + alpha * corr) * (uc[l] + alpha * corr);
+      }
+    PetscInt n_local;
+    VecGetLocalSize(m.u, &n_local);
+    for (PetscInt l = 0; l < n_local; ++l) uc[l] += alpha * (us[l] - uc[l]);
+    VecRestoreArrayRead(ustar, &us);
+    VecRestoreArray(m.u, &uc);
+    double loc[2] = {dc, du}, glob[2];
+    MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    const double change = glob[1] > 0 ? std::sqrt(glob[0] / glob[1]) : 0.0;
+    out.history.push_back(change);
+    if (!load.follow_geometry || change <= load.tolerance) {
+      check(VecCopy(ustar, m.u), "VecCopy");  // the undamped solution of the last linearisation
       out.converged = true;
       break;
     }
   }
   if (!out.converged && out.message.empty())
-    out.message = "active set still changing after " + std::to_string(load.max_active_set_iterations) + " iterations";
+    out.message = "Signorini iteration did not converge in " + std::to_string(load.max_outer_iterations) +
+                  " iterations (last relative change " + (out.history.empty() ? "-" : std::to_string(out.history.back())) + ")";
+
+  // Reactions on the top face, separation and penetration of the face.
+  check(MatMult(m.K, m.u, r), "MatMult");
+  const PetscScalar *rr, *uu;
+  VecGetArrayRead(r, &rr);
+  VecGetArrayRead(m.u, &uu);
+  double fz = 0, fx = 0, fy = 0, sep = 0, pen = 0;
+  for (PetscInt row : top_rows[0]) fx += rr[row - m.rstart];
+  for (PetscInt row : top_rows[1]) fy += rr[row - m.rstart];
+  for (PetscInt row : top_rows[2]) fz -= rr[row - m.rstart];
+  for (const FaceNode& f : face) {
+    const Vec3 p{f.x0.x + uu[f.row[0] - m.rstart], f.x0.y + uu[f.row[1] - m.rstart], uu[f.row[2] - m.rstart]};
+    const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
+    sep += std::max(0.0, p.z - h);
+    pen = std::max(pen, h - p.z);
+  }
+  VecRestoreArrayRead(r, &rr);
+  VecRestoreArrayRead(m.u, &uu);
+  double loc[5] = {fx, fy, fz, sep, 0}, glob[5];
+  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  out.fx = glob[0];
+  out.fy = glob[1];
+  out.fz = glob[2];
+  out.mean_separation = glob[3] / double(out.face_nodes);
+
   KSPDestroy(&ksp);
-  MatDestroy(&A);
-  VecDestroy(&diag);
-  VecDestroy(&u);
+  if (A) MatDestroy(&A);
+  if (Khat) MatDestroy(&Khat);
+  MatDestroy(&R);
+  VecDestroy(&uh);
   VecDestroy(&b);
   VecDestroy(&r);
+  VecDestroy(&diag);
+  VecDestroy(&ustar);
+  VecDestroy(&ulocal);
   return out;
 }
 

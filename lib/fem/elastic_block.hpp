@@ -1,17 +1,24 @@
 #pragma once
-// A linear-elastic block on a rigid obstacle: Q1 hexahedra on a PETSc DMDA (MPI-partitioned),
-// graded towards the contact face z = 0, and the frictionless, non-adhesive contact at its
-// bottom face solved by a primal-dual active set (semismooth Newton) loop on the full matrix:
-// active contact degrees of freedom are eliminated in place, each linear system is solved by
-// CG preconditioned with GAMG (block size 3), warm-started from the previous iterate
-// (../shared/notes/fem-solver-study.md; deal.II step-41/42).
+// A linear-elastic block on a rigid periodic obstacle: Q1 hexahedra on a PETSc DMDA
+// (MPI-partitioned), graded towards the contact face z = 0; frictionless, non-adhesive contact
+// at the bottom face.
 //
-// This first version handles z-aligned contact normals: u_z >= g(x, y) at every bottom node,
-// g = obstacle height - its maximum (the block starts touching the highest point). Units: SI,
-// forces in N for the given E (Pa).
-#include <functional>
+// Each contact solve is the thesis's iterative Signorini problem (sec. 4.2, Algorithm 1):
+// at the current configuration every bottom node casts a ray along its (deformed) outward
+// normal against the triangulated obstacle; the hit point q and the obstacle normal N there
+// give the linearised constraint N . (x + u) >= N . q, i.e. a bound on the displacement
+// component along N. Rotating each bottom node's degrees of freedom into the frame of its N
+// (Householder, Q e_z = N) turns the constraints into simple bounds; the bound-constrained
+// problem is solved by a primal-dual active set (semismooth Newton) loop on the full rotated
+// matrix, active degrees of freedom eliminated in place, CG preconditioned by GAMG (block
+// size 3), warm-started (../shared/notes/fem-solver-study.md). The correction is damped
+// (default 0.8) and the loop stops when the relative change of the bottom-face displacement
+// (l2 over the face nodes: the lumped boundary mass on this uniform face grid) is below a
+// tolerance. Units: SI, forces in N for the given E (Pa).
 #include <string>
 #include <vector>
+
+#include "lib/contact/periodic_obstacle.hpp"
 
 namespace wr {
 
@@ -29,23 +36,31 @@ struct ContactLoad {
   double uz = 0;  // m, downward displacement of the top face
   double ux = 0;  // m, tangential displacement of the top face (fixed top only)
   TopCondition top = TopCondition::fixed;
-  // Obstacle height at (x, y) in m (periodic in the block's extent); empty = flat.
-  std::function<double(double, double)> obstacle;
-  double ksp_rtol = 1e-10;
-  int max_active_set_iterations = 50;
+  // The obstacle, shifted so that its highest point touches z = 0; nullptr = flat at z = 0.
+  const PeriodicObstacle* obstacle = nullptr;
+  bool follow_geometry = true;   // Algorithm 1 (rays, rotated normals); false: one solve, u_z >= h
+  double damping = 0.8;          // alpha_c
+  double tolerance = 1e-6;       // relative change of the contact-face displacement
+  int max_outer_iterations = 60;
+  double ksp_rtol = 1e-9;
+  int max_active_set_iterations = 60;
 };
 
 struct ContactSolution {
   double fz = 0, fx = 0, fy = 0;  // N, reaction on the top face (fz > 0 in compression)
   std::size_t contact_nodes = 0, face_nodes = 0;
-  int active_set_iterations = 0;
-  int linear_iterations = 0;
-  double max_penetration = 0;     // m, worst violation of u_z >= g
+  double mean_separation = 0;     // m, mean vertical gap between the deformed face and the obstacle
+  double max_penetration = 0;     // m, worst depth of a face node below the obstacle
+  int outer_iterations = 0;       // Signorini (geometry) iterations
+  int active_set_iterations = 0;  // PDAS iterations, summed
+  int linear_iterations = 0;      // CG iterations, summed
   bool converged = false;
   std::string message;
+  std::vector<double> history;    // relative change per outer iteration
 };
 
-// Builds the mesh and the stiffness matrix once; solve() may then be called for many loads.
+// Builds the mesh and the stiffness matrix once; solve() may be called for many loads and
+// continues from the previous solution (load stepping).
 class ElasticBlock {
  public:
   explicit ElasticBlock(const BlockSpec& spec);
@@ -55,6 +70,7 @@ class ElasticBlock {
 
   ContactSolution solve(const ContactLoad& load);
   std::size_t nodes() const;
+  std::size_t dofs() const { return 3 * nodes(); }
 
  private:
   struct Impl;
