@@ -15,6 +15,7 @@ struct Command {
 Command add_synth(CLI::App& root);
 Command add_analyze(CLI::App& root);
 Command add_fill(CLI::App& root);
+Command add_contact(CLI::App& root);
 Command add_bench(CLI::App& root);
 
 }  // namespace wr::app

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
 
-  const std::vector<wr::app::Command> commands = {wr::app::add_synth(app), wr::app::add_analyze(app), wr::app::add_fill(app),
+  const std::vector<wr::app::Command> commands = {wr::app::add_synth(app), wr::app::add_analyze(app), wr::app::add_fill(app), wr::app::add_contact(app),
                                                   wr::app::add_bench(app)};
 
   try {

@@ -282,6 +282,13 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     check(MatSetBlockSize(Khat, 3), "MatSetBlockSize");
     if (!A) check(MatDuplicate(Khat, MAT_COPY_VALUES, &A), "MatDuplicate");
     check(MatGetDiagonal(Khat, diag), "MatGetDiagonal");
+    // Eliminated rows get a diagonal of the matrix's own scale, so that AMG smoothers see no
+    // stray unit entries among stiffnesses of order E h.
+    PetscScalar diag_sum;
+    PetscInt diag_n;
+    VecSum(diag, &diag_sum);
+    VecGetSize(diag, &diag_n);
+    const double unit_diag = diag_sum / double(diag_n);
     check(MatMultTranspose(R, m.u, uh), "MatMultTranspose");
 
     // 3. Primal-dual active set on the bounds uh_z >= g at the face nodes.
@@ -309,7 +316,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       check(VecAssemblyEnd(uh), "VecAssemblyEnd");
       check(MatCopy(Khat, A, SAME_NONZERO_PATTERN), "MatCopy");
       check(VecSet(b, 0.0), "VecSet");
-      check(MatZeroRowsColumns(A, PetscInt(rows.size()), rows.data(), 1.0, uh, b), "MatZeroRowsColumns");
+      check(MatZeroRowsColumns(A, PetscInt(rows.size()), rows.data(), unit_diag, uh, b), "MatZeroRowsColumns");
       check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
       check(KSPSolve(ksp, b, uh), "KSPSolve");
       KSPConvergedReason reason;

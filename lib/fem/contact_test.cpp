@@ -1,0 +1,90 @@
+#include "lib/fem/contact_test.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "lib/core/errors.hpp"
+
+namespace wr {
+
+ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
+                                   const std::function<void(const ContactStep&)>& on_step) {
+  if (!obstacle.periodic) throw InputError("--surface", "the obstacle must be a periodic surface");
+  if (opt.refine < 1 || opt.refine > 16) throw InputError("--refine", "must be 1 ... 16");
+  if (!(opt.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
+  if (!(opt.young > 0)) throw InputError("--E", "must be > 0 Pa");
+  if (!(opt.poisson > -1 && opt.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
+  if (!(opt.rms_slope > 0)) throw InputError("--surface", "the obstacle has no slope (flat surface)");
+  if (opt.normal_steps < 1 || (opt.shear && opt.shear_steps < 1)) throw InputError("--steps", "must be >= 1");
+
+  const double t_start = MPI_Wtime();
+  ContactTestResult res;
+  HeightMap shifted = obstacle;  // highest point at z = 0: the block starts touching it
+  const double hmax = *std::max_element(shifted.h.begin(), shifted.h.end());
+  for (double& v : shifted.h) v -= hmax;
+  const PeriodicObstacle ob(shifted);
+
+  BlockSpec b;
+  b.lx = obstacle.lx();
+  b.ly = obstacle.ly();
+  b.lz = opt.height > 0 ? opt.height : b.lx;
+  b.nx = int(obstacle.nx) * opt.refine;
+  b.ny = int(obstacle.ny) * opt.refine;
+  res.face_spacing = obstacle.dx / opt.refine;
+  b.grading = opt.grading;
+  b.nz = opt.nz > 0 ? opt.nz : std::max(2, int(std::ceil(std::pow(b.lz / res.face_spacing, 1.0 / b.grading))));
+  b.young = opt.young;
+  b.poisson = opt.poisson;
+  ElasticBlock block(b);
+  res.nodes = block.nodes();
+  res.dofs = block.dofs();
+  res.face_nodes = std::size_t(b.nx + 1) * (b.ny + 1);
+  res.rms_slope = opt.rms_slope;
+  res.e_star = opt.young / (1 - opt.poisson * opt.poisson);
+  const double a0 = b.lx * b.ly;
+
+  ContactLoad load;
+  load.obstacle = &ob;
+  load.follow_geometry = opt.follow_geometry;
+  load.damping = opt.damping;
+  load.tolerance = opt.tolerance;
+  const int total = opt.normal_steps + (opt.shear ? opt.shear_steps : 0);
+  for (int k = 1; k <= total; ++k) {
+    const bool normal_phase = k <= opt.normal_steps;
+    load.uz = normal_phase ? opt.uz * k / opt.normal_steps : opt.uz;
+    load.ux = normal_phase ? 0.0 : opt.ux * (k - opt.normal_steps) / opt.shear_steps;
+    const double t0 = MPI_Wtime();
+    const ContactSolution s = block.solve(load);
+    ContactStep st;
+    st.uz = load.uz;
+    st.ux = load.ux;
+    st.fz = s.fz;
+    st.fx = s.fx;
+    st.fy = s.fy;
+    st.area_fraction = double(s.contact_nodes) / double(s.face_nodes);
+    st.contact_area = st.area_fraction * a0;
+    st.sigma_star = s.fz / a0 / (res.e_star * res.rms_slope);
+    st.mu = s.fz > 0 ? s.fx / s.fz : 0.0;
+    st.separation = s.mean_separation;
+    st.max_penetration = s.max_penetration;
+    st.signorini_iterations = s.outer_iterations;
+    st.active_set_iterations = s.active_set_iterations;
+    st.linear_iterations = s.linear_iterations;
+    st.wall_s = MPI_Wtime() - t0;
+    st.converged = s.converged;
+    st.message = s.message;
+    st.history = s.history;
+    res.steps.push_back(st);
+    if (on_step) on_step(st);
+    if (!s.converged) {
+      res.failed = true;
+      break;
+    }
+  }
+  res.wall_s = MPI_Wtime() - t_start;
+  return res;
+}
+
+}  // namespace wr

@@ -1,0 +1,55 @@
+#pragma once
+// The thesis's contact experiments on one scene (sec. 4.2.2): Problem A (normal load: the top
+// face pushed down in steps) and Problem B (shear test: after A, the top pushed sideways in
+// steps), on an elastic block whose side equals the obstacle's period. Per step: forces,
+// friction ratio, contact fraction, normalised pressure, separation, penetration, iterations,
+// wall time. A step whose solver fails ends the run; the finished steps are kept.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "lib/core/height_map.hpp"
+#include "lib/fem/elastic_block.hpp"
+
+namespace wr {
+
+struct ContactTestOptions {
+  bool shear = false;       // Problem B after A
+  double uz = 0;            // m, final normal displacement of the top
+  double ux = 0;            // m, final tangential displacement (shear)
+  int normal_steps = 4;
+  int shear_steps = 4;
+  int refine = 2;           // contact-face spacing = obstacle spacing / refine
+  double height = 0;        // m, block height (0: the period, a cube)
+  int nz = 0;               // element layers (0: from the grading, bottom layer ~ face spacing)
+  double grading = 2.0;
+  double young = 1.0, poisson = 0.45;
+  bool follow_geometry = true;
+  double damping = 0.8, tolerance = 1e-6;
+  double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
+};
+
+struct ContactStep {
+  double uz = 0, ux = 0, fz = 0, fx = 0, fy = 0;
+  double area_fraction = 0, contact_area = 0, sigma_star = 0, mu = 0;
+  double separation = 0, max_penetration = 0;
+  int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
+  double wall_s = 0;
+  bool converged = false;
+  std::string message;
+  std::vector<double> history;
+};
+
+struct ContactTestResult {
+  std::size_t nodes = 0, dofs = 0, face_nodes = 0;
+  double face_spacing = 0, rms_slope = 0, e_star = 0;
+  std::vector<ContactStep> steps;
+  bool failed = false;
+  double wall_s = 0;
+};
+
+// `obstacle` must be periodic. `on_step` (may be empty) is called after every step.
+ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
+                                   const std::function<void(const ContactStep&)>& on_step = {});
+
+}  // namespace wr
