@@ -32,6 +32,17 @@ std::optional<double> moller_trumbore(const Vec3& p, const Vec3& d, const Vec3& 
 PeriodicObstacle::PeriodicObstacle(const HeightMap& s)
     : nx_(s.nx), ny_(s.ny), dx_(s.dx), dy_(s.dy), z_(s.h) {
   max_h_ = *std::max_element(z_.begin(), z_.end());
+  // Angle-weighted vertex normals: the triangle normals sampled in 8 directions around it.
+  vertex_normals_.resize(nx_ * ny_);
+  for (std::size_t j = 0; j < ny_; ++j)
+    for (std::size_t i = 0; i < nx_; ++i) {
+      Vec3 sum;
+      for (int k = 0; k < 8; ++k) {
+        const double a = (k + 0.5) * M_PI / 4;
+        sum = sum + normal(i * dx_ + 1e-6 * dx_ * std::cos(a), j * dy_ + 1e-6 * dy_ * std::sin(a));
+      }
+      vertex_normals_[j * nx_ + i] = sum.unit();
+    }
 }
 
 double PeriodicObstacle::h(long i, long j) const {
@@ -117,21 +128,25 @@ std::optional<RayHit> PeriodicObstacle::cast_forward(const Vec3& p, const Vec3& 
   return best;
 }
 
+Vec3 PeriodicObstacle::vertex_normal(long i, long j) const {
+  const long nx = long(nx_), ny = long(ny_);
+  i %= nx;
+  j %= ny;
+  if (i < 0) i += nx;
+  if (j < 0) j += ny;
+  return vertex_normals_[std::size_t(j) * nx_ + std::size_t(i)];
+}
+
 Vec3 PeriodicObstacle::contact_normal(const Vec3& q) const {
-  // On an edge or a vertex of the triangulation the normal is not defined: use the angle-
-  // weighted mean of the triangles around it (sampled in 8 directions), so that a node resting
-  // exactly on a crest vertex feels no spurious sideways push.
   const double fx = q.x / dx_, fy = q.y / dy_;
-  const double u = fx - std::floor(fx), v = fy - std::floor(fy);
-  const double eps = 1e-9;
-  const bool on_edge = u < eps || u > 1 - eps || v < eps || v > 1 - eps || std::abs(u - v) < eps;
-  if (!on_edge) return normal(q.x, q.y);
-  Vec3 sum;
-  for (int k = 0; k < 8; ++k) {
-    const double a = (k + 0.5) * M_PI / 4;
-    sum = sum + normal(q.x + 1e-6 * dx_ * std::cos(a), q.y + 1e-6 * dy_ * std::sin(a));
-  }
-  return sum.unit();
+  const long i = floor_div(fx), j = floor_div(fy);
+  const double u = fx - i, v = fy - j;
+  Vec3 n;
+  if (u >= v)  // lower triangle (i,j), (i+1,j), (i+1,j+1): weights 1-u, u-v, v
+    n = vertex_normal(i, j) * (1 - u) + vertex_normal(i + 1, j) * (u - v) + vertex_normal(i + 1, j + 1) * v;
+  else  // upper triangle (i,j), (i+1,j+1), (i,j+1): weights 1-v, u, v-u
+    n = vertex_normal(i, j) * (1 - v) + vertex_normal(i + 1, j + 1) * u + vertex_normal(i, j + 1) * (v - u);
+  return n.unit();
 }
 
 std::optional<RayHit> PeriodicObstacle::cast(const Vec3& p, const Vec3& d, double max_distance) const {

@@ -6,6 +6,7 @@
 // two triangles of each visited cell are tested (Moller-Trumbore). The obstacle repeats with
 // periods Lx = nx dx, Ly = ny dy; no copy is made.
 #include <optional>
+#include <vector>
 
 #include "lib/core/height_map.hpp"
 #include "lib/core/vec3.hpp"
@@ -29,9 +30,14 @@ class PeriodicObstacle {
   // Upward unit normal of the triangle under (x, y).
   Vec3 normal(double x, double y) const;
   double max_height() const { return max_h_; }
-  // Normal used for contact at a surface point: the triangle's, or on an edge or vertex the
-  // angle-weighted mean of the triangles around it.
+  // Normal used for contact at a surface point q: the barycentric blend of the vertex normals
+  // of the triangle under q (each vertex normal the angle-weighted mean of the triangles
+  // around it). Unlike the piecewise-constant triangle normals it varies continuously with q,
+  // which keeps the damped Signorini iteration from cycling between triangles; the gap
+  // itself is measured to the exact triangulated surface.
   Vec3 contact_normal(const Vec3& q) const;
+  // Angle-weighted normal at lattice vertex (i, j).
+  Vec3 vertex_normal(long i, long j) const;
 
   // The intersection nearest to p along the line p + t d (d need not be unit; t is reported
   // in units of |d|), searching ahead and behind up to |t| <= max_distance. None if the line
@@ -47,6 +53,7 @@ class PeriodicObstacle {
   std::size_t nx_, ny_;
   double dx_, dy_;
   BigVector z_;
+  std::vector<Vec3> vertex_normals_;
   double max_h_ = 0;
 };
 

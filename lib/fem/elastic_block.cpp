@@ -235,6 +235,8 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
 
   const double reach = std::max(s.lz, 1e-12);  // rays look this far for the obstacle
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
+  double alpha_now = load.damping;
+  std::vector<double> prev_corr(3 * face.size(), 0.0);
   for (int outer = 0; outer < outer_max; ++outer) {
     out.outer_iterations = outer + 1;
     // 1. Linearise the contact at the current configuration.
@@ -366,11 +368,32 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
 
     // 4. Damped correction and its size on the contact face.
     check(MatMult(R, uh, ustar), "MatMult");
-    const double alpha = load.follow_geometry ? load.damping : 1.0;
     const PetscScalar* us;
     PetscScalar* uc;
     VecGetArrayRead(ustar, &us);
     VecGetArray(m.u, &uc);
+    // Damping: halved when the correction reverses (a node chattering between two contact
+    // states across a kink of the obstacle), restored while corrections keep their direction.
+    double cc = 0, cp = 0, pp = 0;
+    for (std::size_t n = 0; n < face.size(); ++n)
+      for (int c = 0; c < 3; ++c) {
+        const PetscInt l = face[n].row[c] - m.rstart;
+        const double corr = us[l] - uc[l];
+        cc += corr * corr;
+        cp += corr * prev_corr[3 * n + c];
+        pp += prev_corr[3 * n + c] * prev_corr[3 * n + c];
+        prev_corr[3 * n + c] = corr;
+      }
+    double dots[3] = {cc, cp, pp}, gdots[3];
+    MPI_Allreduce(dots, gdots, 3, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    if (load.follow_geometry && gdots[2] > 0) {
+      const double cosine = gdots[1] / std::sqrt(gdots[0] * gdots[2]);
+      if (cosine < -0.3)
+        alpha_now = std::max(0.5 * alpha_now, 0.01);
+      else if (cosine > 0.7)
+        alpha_now = std::min(1.5 * alpha_now, load.damping);
+    }
+    const double alpha = load.follow_geometry ? alpha_now : 1.0;
     double dc = 0, du = 0;
     for (const FaceNode& f : face)
       for (int c = 0; c < 3; ++c) {
@@ -386,8 +409,10 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     VecRestoreArray(m.u, &uc);
     double loc[2] = {dc, du}, glob[2];
     MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    const double change = glob[1] > 0 ? std::sqrt(glob[0] / glob[1]) : 0.0;
+    // Relative size of the step actually taken on the contact face.
+    const double change = glob[1] > 0 ? alpha * std::sqrt(glob[0] / glob[1]) : 0.0;
     out.history.push_back(change);
+    out.final_damping = alpha;
     if (!load.follow_geometry || change <= load.tolerance) {
       check(VecCopy(ustar, m.u), "VecCopy");  // the undamped solution of the last linearisation
       out.converged = true;

@@ -41,7 +41,7 @@ struct ContactLoad {
   bool follow_geometry = true;   // Algorithm 1 (rays, rotated normals); false: one solve, u_z >= h
   double damping = 0.8;          // alpha_c
   double tolerance = 1e-6;       // relative change of the contact-face displacement
-  int max_outer_iterations = 60;
+  int max_outer_iterations = 300;
   double ksp_rtol = 1e-9;
   int max_active_set_iterations = 60;
 };
@@ -56,7 +56,8 @@ struct ContactSolution {
   int linear_iterations = 0;      // CG iterations, summed
   bool converged = false;
   std::string message;
-  std::vector<double> history;    // relative change per outer iteration
+  std::vector<double> history;    // relative change of the face displacement per outer iteration
+  double final_damping = 0;       // alpha_c at the end (halved while the iteration stagnated)
 };
 
 // Builds the mesh and the stiffness matrix once; solve() may be called for many loads and
