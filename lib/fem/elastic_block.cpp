@@ -236,6 +236,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   const double reach = std::max(s.lz, 1e-12);  // rays look this far for the obstacle
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
   double alpha_now = load.damping;
+  int first_its = -1;  // CG iterations with a fresh preconditioner
   std::vector<double> prev_corr(3 * face.size(), 0.0);
   for (int outer = 0; outer < outer_max; ++outer) {
     out.outer_iterations = outer + 1;
@@ -326,6 +327,14 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       KSPGetConvergedReason(ksp, &reason);
       KSPGetIterationNumber(ksp, &its);
       out.linear_iterations += int(its);
+      // Keep the AMG hierarchy of the first system for the later ones of this load step (the
+      // systems differ only by rotations and eliminated rows); rebuild it when CG slows down.
+      if (load.reuse_preconditioner) {
+        if (first_its < 0) first_its = int(its);
+        const bool slow = first_its >= 0 && its > 3 * std::max(first_its, 10);
+        check(KSPSetReusePreconditioner(ksp, slow ? PETSC_FALSE : PETSC_TRUE), "KSPSetReusePreconditioner");
+        if (slow) first_its = -1;
+      }
       if (reason < 0) {
         out.message = "linear solve failed (KSP reason " + std::to_string(int(reason)) + ") in Signorini iteration " +
                       std::to_string(outer + 1);

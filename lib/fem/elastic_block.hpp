@@ -44,6 +44,7 @@ struct ContactLoad {
   int max_outer_iterations = 300;
   double ksp_rtol = 1e-9;
   int max_active_set_iterations = 60;
+  bool reuse_preconditioner = true;  // keep one AMG hierarchy per load step (rebuilt if CG slows)
 };
 
 struct ContactSolution {
