@@ -142,40 +142,34 @@ DepressionHierarchy::DepressionHierarchy(const HeightMap& map, int connectivity,
     active[c] = 1;
     const double hc = h_[c];
     bool outlet = false;
-    for (int k = 0; k < topo_.connectivity(); ++k) {
-      const Neighbour nb = topo_.neighbour(c % nx, c / nx, k);
-      if (nb.outside) {
-        outlet = true;
-        continue;
-      }
-      if (!active[nb.cell] || nb.cell == c) continue;
-      const LiftedUnionFind::Edge e = uf.edge(c, nb);
-      const std::uint32_t rc = e.rc, rn = e.rn;
-      if (rc == rn) {
-        // The same component reached again: through a different copy of the neighbour?
-        if (!wrapped[rc] && LiftedUnionFind::wraps(e, nb)) mark_wrapped(rc, hc);
-        continue;
-      }
-      if (top[rc] < 0) {  // c alone so far: it simply joins the neighbour's component
-        const std::uint32_t root = uf.unite(e, nb);
-        top[root] = top[rn];
-        wrapped[root] = wrapped[rn];
-        continue;
-      }
-      // Two depressions meet at saddle c: a merge node.
-      const int a = top[rc], b = top[rn];
-      const int p = new_node(hc);
-      nodes_[p].child[0] = a;
-      nodes_[p].child[1] = b;
-      nodes_[p].entry[0] = entry_into(c, rn);  // overflow of a enters b's side
-      nodes_[p].entry[1] = entry_into(c, rc);  // overflow of b enters a's side
-      nodes_[p].ocean_at_birth = wrapped[rc] || wrapped[rn];
-      nodes_[a].parent = p;
-      nodes_[b].parent = p;
-      const std::uint32_t big = uf.unite(e, nb);
-      wrapped[big] = wrapped[rc] || wrapped[rn];
-      top[big] = p;
-    }
+    visit_active_edges(
+        topo_, c, active, uf, [&] { outlet = true; },
+        [&](const LiftedUnionFind::Edge& e, const Neighbour& nb) {
+          // The same component reached again: through a different copy of the neighbour?
+          if (!wrapped[e.rc] && LiftedUnionFind::wraps(e, nb)) mark_wrapped(e.rc, hc);
+        },
+        [&](const LiftedUnionFind::Edge& e, const Neighbour& nb) {
+          const std::uint32_t rc = e.rc, rn = e.rn;
+          if (top[rc] < 0) {  // c alone so far: it simply joins the neighbour's component
+            const std::uint32_t root = uf.unite(e, nb);
+            top[root] = top[rn];
+            wrapped[root] = wrapped[rn];
+            return;
+          }
+          // Two depressions meet at saddle c: a merge node.
+          const int a = top[rc], b = top[rn];
+          const int p = new_node(hc);
+          nodes_[p].child[0] = a;
+          nodes_[p].child[1] = b;
+          nodes_[p].entry[0] = entry_into(c, rn);  // overflow of a enters b's side
+          nodes_[p].entry[1] = entry_into(c, rc);  // overflow of b enters a's side
+          nodes_[p].ocean_at_birth = wrapped[rc] || wrapped[rn];
+          nodes_[a].parent = p;
+          nodes_[b].parent = p;
+          const std::uint32_t big = uf.unite(e, nb);
+          wrapped[big] = wrapped[rc] || wrapped[rn];
+          top[big] = p;
+        });
     std::int32_t cx, cy;
     const std::uint32_t rc = uf.find(c, cx, cy);
     if (top[rc] < 0) top[rc] = new_node(hc);  // a pit: new leaf

@@ -11,7 +11,7 @@ namespace wr {
 
 BigVector drained_limit_levels(const HeightMap& map, int connectivity, Boundary boundary) {
   const GridTopology t(map.nx, map.ny, map.dx, map.dy, connectivity, boundary);
-  const std::size_t n = map.h.size(), nx = map.nx;
+  const std::size_t n = map.h.size();
   for (double v : map.h)
     if (!std::isfinite(v)) throw InputError("", "the surface has NaN/Inf heights; fill dropouts first");
   const std::vector<std::uint32_t> order = cells_in_height_order(map.h);
@@ -31,31 +31,25 @@ BigVector drained_limit_levels(const HeightMap& map, int connectivity, Boundary 
     active[c] = 1;
     const double hc = map.h[c];
     bool outlet = false;
-    for (int k = 0; k < connectivity; ++k) {
-      const Neighbour nb = t.neighbour(c % nx, c / nx, k);
-      if (nb.outside) {
-        outlet = true;
-        continue;
-      }
-      if (!active[nb.cell] || nb.cell == c) continue;
-      const LiftedUnionFind::Edge e = uf.edge(c, nb);
-      const std::uint32_t rc = e.rc, rn = e.rn;
-      if (rc == rn) {
-        if (!wrapped[rc] && LiftedUnionFind::wraps(e, nb)) drain_all(rc, hc);
-        continue;
-      }
-      const bool w = wrapped[rc] || wrapped[rn];
-      if (w) {  // the other side spills into infinity at this level
-        if (!wrapped[rc]) drain_all(rc, hc);
-        if (!wrapped[rn]) drain_all(rn, hc);
-      }
-      const std::uint32_t big = uf.unite(e, nb), small = big == rc ? rn : rc;
-      if (!w) {  // concatenate member lists
-        next[tail[big]] = small;
-        tail[big] = tail[small];
-      }
-      wrapped[big] = w;
-    }
+    visit_active_edges(
+        t, c, active, uf, [&] { outlet = true; },
+        [&](const LiftedUnionFind::Edge& e, const Neighbour& nb) {
+          if (!wrapped[e.rc] && LiftedUnionFind::wraps(e, nb)) drain_all(e.rc, hc);
+        },
+        [&](const LiftedUnionFind::Edge& e, const Neighbour& nb) {
+          const std::uint32_t rc = e.rc, rn = e.rn;
+          const bool w = wrapped[rc] || wrapped[rn];
+          if (w) {  // the other side spills into infinity at this level
+            if (!wrapped[rc]) drain_all(rc, hc);
+            if (!wrapped[rn]) drain_all(rn, hc);
+          }
+          const std::uint32_t big = uf.unite(e, nb), small = big == rc ? rn : rc;
+          if (!w) {  // concatenate member lists
+            next[tail[big]] = small;
+            tail[big] = tail[small];
+          }
+          wrapped[big] = w;
+        });
     std::int32_t cx, cy;
     const std::uint32_t r = uf.find(c, cx, cy);
     if (outlet && !wrapped[r]) drain_all(r, hc);

@@ -78,4 +78,25 @@ struct LiftedUnionFind {
 };
 
 
+// The sweep step shared by the water algorithms: for cell c, just activated, visit the edges to
+// its active neighbours. `outlet()` is called for a neighbour beyond a bounded map's edge,
+// `same(edge, nb)` when both ends are already one component, `merge(edge, nb)` otherwise.
+template <class Outlet, class Same, class Merge>
+void visit_active_edges(const GridTopology& t, std::uint32_t c, const std::vector<char>& active,
+                        LiftedUnionFind& uf, Outlet&& outlet, Same&& same, Merge&& merge) {
+  for (int k = 0; k < t.connectivity(); ++k) {
+    const Neighbour nb = t.neighbour(c % t.nx(), c / t.nx(), k);
+    if (nb.outside) {
+      outlet();
+      continue;
+    }
+    if (!active[nb.cell] || nb.cell == c) continue;
+    const LiftedUnionFind::Edge e = uf.edge(c, nb);
+    if (e.rc == e.rn)
+      same(e, nb);
+    else
+      merge(e, nb);
+  }
+}
+
 }  // namespace wr

@@ -45,14 +45,16 @@ PeriodicObstacle::PeriodicObstacle(const HeightMap& s)
     }
 }
 
-double PeriodicObstacle::h(long i, long j) const {
+std::size_t PeriodicObstacle::wrap_index(long i, long j) const {
   const long nx = long(nx_), ny = long(ny_);
   i %= nx;
   j %= ny;
   if (i < 0) i += nx;
   if (j < 0) j += ny;
-  return z_[std::size_t(j) * nx_ + std::size_t(i)];
+  return std::size_t(j) * nx_ + std::size_t(i);
 }
+
+double PeriodicObstacle::h(long i, long j) const { return z_[wrap_index(i, j)]; }
 
 double PeriodicObstacle::height(double x, double y) const {
   const double fx = x / dx_, fy = y / dy_;
@@ -128,14 +130,7 @@ std::optional<RayHit> PeriodicObstacle::cast_forward(const Vec3& p, const Vec3& 
   return best;
 }
 
-Vec3 PeriodicObstacle::vertex_normal(long i, long j) const {
-  const long nx = long(nx_), ny = long(ny_);
-  i %= nx;
-  j %= ny;
-  if (i < 0) i += nx;
-  if (j < 0) j += ny;
-  return vertex_normals_[std::size_t(j) * nx_ + std::size_t(i)];
-}
+Vec3 PeriodicObstacle::vertex_normal(long i, long j) const { return vertex_normals_[wrap_index(i, j)]; }
 
 Vec3 PeriodicObstacle::contact_normal(const Vec3& q) const {
   const double fx = q.x / dx_, fy = q.y / dy_;

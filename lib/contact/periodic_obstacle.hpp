@@ -45,7 +45,8 @@ class PeriodicObstacle {
   std::optional<RayHit> cast(const Vec3& p, const Vec3& d, double max_distance) const;
 
  private:
-  double h(long i, long j) const;  // lattice height with periodic wrap
+  std::size_t wrap_index(long i, long j) const;  // lattice index with periodic wrap
+  double h(long i, long j) const;                 // lattice height with periodic wrap
   // First hit along p + t d for t in [0, tmax] (d unit); walks the cells.
   std::optional<RayHit> cast_forward(const Vec3& p, const Vec3& d, double tmax) const;
   bool hit_cell(long ci, long cj, const Vec3& p, const Vec3& d, double tmax, RayHit& best) const;
