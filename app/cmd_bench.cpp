@@ -5,7 +5,9 @@
 
 #include "app/commands.hpp"
 #include "bench/bench_harness.hpp"
+#include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
+#include <cmath>
 
 namespace wr::app {
 namespace {
@@ -17,6 +19,8 @@ struct BenchCli {
   std::vector<double> fractions = {1.0, 0.5, 0.25, 0.125};
   std::string json;
   std::size_t water_n = 1024;
+  std::vector<int> hertz_meshes = {32, 64, 128};
+  double hertz_radius = 0.1, hertz_uz = 6e-5;
   int seeds = 10;
 };
 
@@ -78,6 +82,34 @@ int run_water(const BenchCli& c) {
   return 0;
 }
 
+int run_hertz(const BenchCli& c) {
+  int argc = 1;
+  char name[] = "wetroad";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  PetscSession petsc(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto rows = bench::hertz(c.hertz_meshes, c.hertz_radius, c.hertz_uz);
+  if (rank != 0) return 0;
+  std::printf("Hertz: paraboloid R = %g m pressed %g m into a 20 mm block (E = 1, nu = 0.45)\n", c.hertz_radius,
+              c.hertz_uz);
+  std::printf("  %5s %10s %9s %12s %10s %10s %9s %9s %8s\n", "n", "h [m]", "nodes", "Fz [N]", "a_fem", "a_Hertz(F)",
+              "err a", "err F", "wall s");
+  double prev = 0;
+  for (const auto& r : rows) {
+    const double e = r["radius_error"].get<double>();
+    std::printf("  %5d %10.3g %9zu %12.5e %10.5g %10.5g %8.2f%% %8.2f%% %8.1f", r["n"].get<int>(), r["h"].get<double>(),
+                r["nodes"].get<std::size_t>(), r["fz"].get<double>(), r["a_fem"].get<double>(),
+                r["a_hertz"].get<double>(), 100 * e, 100 * r["force_error"].get<double>(), r["wall_s"].get<double>());
+    if (prev != 0 && e != 0) std::printf("   order %.2f", std::log(std::abs(prev / e)) / std::log(2.0));
+    std::printf("\n");
+    prev = e;
+  }
+  if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  return 0;
+}
+
 int run_coverage(const BenchCli& c) {
   const auto rows = bench::water_limit_coverage(c.seeds);
   std::printf("drained-limit coverage of the default surface (300x300, h0 0.3 mm, H 0.7), %d seeds; thesis: 40.45%%\n",
@@ -115,7 +147,13 @@ Command add_bench(CLI::App& root) {
   CLI::App* co = b->add_subcommand("coverage", "Drained-limit coverage of the default surface over seeds (4 and 8 connectivity).");
   co->add_option("--seeds", c->seeds, "realizations")->capture_default_str();
   co->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su, wa, co] {
+  CLI::App* he = b->add_subcommand("hertz", "Hertz validation of the FEM contact solver over three meshes (MPI ok).");
+  he->add_option("--meshes", c->hertz_meshes, "elements per face side")->capture_default_str();
+  he->add_option("--radius", c->hertz_radius, "paraboloid radius of curvature, m")->capture_default_str();
+  he->add_option("--uz", c->hertz_uz, "top displacement, m")->capture_default_str();
+  he->add_option("--json", c->json, "write the results as JSON");
+  return {b, [c, sp, su, wa, co, he] {
+            if (he->parsed()) return run_hertz(*c);
             if (sp->parsed()) return run_speed(*c);
             if (su->parsed()) return run_summits(*c);
             if (wa->parsed()) return run_water(*c);

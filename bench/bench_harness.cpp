@@ -11,6 +11,7 @@
 
 #include "lib/analytic/nayak_summits.hpp"
 #include "lib/core/provenance.hpp"
+#include "lib/fem/elastic_block.hpp"
 #include "roads/analyze.hpp"
 #include "roads/surface_file.hpp"
 #include "roads/surface_import.hpp"
@@ -231,6 +232,54 @@ nlohmann::json water_limit_coverage(int seeds) {
                     {"tiling_differing_cells_mean", dm},
                     {"exact", exact},
                     {"tiled_3x3", tiled}});
+  }
+  return rows;
+}
+
+nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
+  const double L = 0.02, young = 1.0, nu = 0.45, e_star = young / (1 - nu * nu);
+  // The cap on a fine lattice (the triangulated paraboloid deviates from the true one by
+  // dx^2 / (8 R), negligible against the indentation).
+  const std::size_t nlat = 512;
+  HeightMap cap(nlat, nlat, L / nlat, L / nlat);
+  for (std::size_t j = 0; j < nlat; ++j)
+    for (std::size_t i = 0; i < nlat; ++i) {
+      const double x = i * L / nlat - L / 2, y = j * L / nlat - L / 2;
+      cap(i, j) = -(x * x + y * y) / (2 * radius);
+    }
+  const PeriodicObstacle obstacle(cap);
+  nlohmann::json rows = nlohmann::json::array();
+  for (int n : meshes) {
+    BlockSpec b;
+    b.lx = b.ly = b.lz = L;
+    b.nx = b.ny = n;
+    b.grading = 2.0;
+    b.nz = int(std::ceil(std::sqrt(double(n))));
+    b.young = young;
+    b.poisson = nu;
+    const double t0 = now();
+    ElasticBlock block(b);
+    ContactLoad load;
+    load.obstacle = &obstacle;
+    load.follow_geometry = false;  // Hertz's linearised (small-slope) geometry
+    load.uz = uz;
+    load.ksp_rtol = 1e-8;
+    const ContactSolution s = block.solve(load);
+    const double h = L / n;
+    const double a_num = std::sqrt(double(s.contact_nodes) * h * h / M_PI);
+    const double a_hertz = std::cbrt(3 * s.fz * radius / (4 * e_star));
+    rows.push_back({{"n", n},
+                    {"h", h},
+                    {"nodes", block.nodes()},
+                    {"fz", s.fz},
+                    {"contact_nodes", s.contact_nodes},
+                    {"a_fem", a_num},
+                    {"a_hertz", a_hertz},
+                    {"radius_error", a_num / a_hertz - 1},
+                    {"force_error", s.fz / (4 * e_star * a_num * a_num * a_num / (3 * radius)) - 1},
+                    {"converged", s.converged},
+                    {"wall_s", now() - t0}});
+    std::fprintf(stderr, "  mesh %d done (%.1f s)\n", n, now() - t0);
   }
   return rows;
 }

@@ -25,4 +25,10 @@ nlohmann::json water_speed(std::size_t n, int rain_depths);
 // 4- and 8-connectivity (exact torus and the thesis's 3x3 tiling).
 nlohmann::json water_limit_coverage(int seeds);
 
+// Hertz validation of the FEM contact solver (PETSc must be initialised): a paraboloid
+// obstacle (radius R) pressed into an elastic block on meshes of n x n elements per face;
+// compares the contact radius with Hertz's for the computed force, a = (3 F R / (4 E*))^(1/3),
+// and reports the observed convergence order.
+nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz);
+
 }  // namespace wr::bench
