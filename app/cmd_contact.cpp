@@ -12,6 +12,7 @@
 #include "lib/fem/contact_test.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/hdf5_file.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/surface_import.hpp"
 
@@ -19,7 +20,7 @@ namespace wr::app {
 namespace {
 
 struct ContactCli {
-  std::string surface, wet, problem = "normal", json, petsc, model = "fem";
+  std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu;
   ContactTestOptions opt;
   int steps = 4;
   bool quiet = false, vertical = false;
@@ -56,6 +57,9 @@ int run_contact(ContactCli c) {
   c.opt.normal_steps = c.opt.shear_steps = c.steps;
   c.opt.follow_geometry = !c.vertical;
   c.opt.rms_slope = rms_slope_finite_difference(s.map);
+  c.opt.face_maps = !c.out.empty();
+  std::string vts_tmp;
+  if (!c.vtu.empty()) c.opt.vts_path = vts_tmp = temporary_sibling(c.vtu) + ".vts";
 
   int argc = 1;
   char name[] = "wetroad";
@@ -108,6 +112,24 @@ int run_contact(ContactCli c) {
                       {"steps", steps},
                       {"provenance", prov.to_json()}};
   if (rank == 0 && !c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
+  if (rank == 0 && !c.out.empty()) {
+    Hdf5Writer w(c.out);
+    w.create_group("/steps");
+    for (std::size_t k = 0; k < r.steps.size(); ++k) {
+      const ContactStep& st = r.steps[k];
+      const std::string g = "/steps/" + std::to_string(k + 1);
+      w.create_group(g);
+      w.write_matrix(g + "/pressure", st.face_pressure.data(), r.face_ny, r.face_nx);
+      w.write_matrix(g + "/gap", st.face_gap.data(), r.face_ny, r.face_nx);
+      w.write_matrix(g + "/status", st.face_status.data(), r.face_ny, r.face_nx);
+      w.write_attr(g, "summary", step_json(st).dump());
+    }
+    w.write_attr("/", "face_spacing", r.face_spacing);
+    w.write_attr("/", "summary", j.dump());
+    w.write_attr("/", "provenance", prov.to_json().dump());
+    w.commit();
+  }
+  if (rank == 0 && !vts_tmp.empty() && !r.steps.empty()) commit_file(vts_tmp, c.vtu);
   if (r.failed) {
     const ContactStep& last = r.steps.back();
     if (rank == 0) {
@@ -136,7 +158,7 @@ Command add_contact(CLI::App& root) {
       "the deformed face normals against the triangulated obstacle, constraints rotated into the obstacle's\n"
       "normal frames, primal-dual active set with CG + GAMG, damped corrections). MPI: mpirun -np N.\n"
       "Current limits: the block mesh is structured (uniform in-plane at the face spacing, graded in z),\n"
-      "so large obstacles at fine refinement need much memory; no pressure maps or VTU output yet.\n"
+      "so large obstacles at fine refinement need much memory.\n"
       "Example: wetroad contact --surface road.h5 --problem shear --uz 9e-3 --ux 1e-3 --json mu.json");
   s->add_option("--surface", c->surface, "surface file (periodic HDF5 height map)")->required();
   s->add_option("--wet", c->wet, "wet surface from `wetroad fill` (used as the obstacle instead)");
@@ -153,9 +175,13 @@ Command add_contact(CLI::App& root) {
   s->add_option("--damping", c->opt.damping, "Signorini correction damping alpha_c")->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step")
       ->capture_default_str();
+  s->add_option("--max-iterations", c->opt.max_iterations, "Signorini iterations allowed per step")
+      ->capture_default_str();
   s->add_flag("--vertical", c->vertical, "linearise once with vertical normals (small-slope approximation)");
   s->add_option("--model", c->model, "contact model: fem")->capture_default_str();
   s->add_option("--json", c->json, "write the per-step results as JSON (SI units)");
+  s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5");
+  s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (VTK structured grid)");
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_contact(*c); }};

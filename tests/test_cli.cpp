@@ -205,6 +205,34 @@ TEST_F(Cli, FillRefusesBadRequests) {
   }
 }
 
+TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
+  const std::string s = path("s.h5"), j = path("c.json");
+  ASSERT_EQ(run("synth --size 12 --q0-ratio 2 --dx 1e-4 --h0 2e-5 --seed 4 -o " + s).code, 0);
+  CliRun r = run("contact --surface " + s + " --problem shear --uz 1e-4 --ux 2e-5 --steps 1 --refine 1 --json " + j +
+                 " --out " + path("c.h5") + " --vtu " + path("c.vts"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("c.h5")));
+  EXPECT_TRUE(fs::exists(path("c.vts")));
+  std::ifstream f(j);
+  const auto js = nlohmann::json::parse(f);
+  for (const char* key : {"model", "nodes", "dofs", "ranks", "wall_s"}) EXPECT_TRUE(js.contains(key)) << key;
+  ASSERT_EQ(js["steps"].size(), 2u);  // one normal, one shear step
+  for (const char* key : {"uz", "ux", "fz", "fx", "fy", "area_fraction", "contact_area", "sigma_star", "mu", "separation",
+                          "max_penetration", "signorini_iterations", "linear_iterations", "wall_s"})
+    EXPECT_TRUE(js["steps"][1].contains(key)) << key;
+  EXPECT_GT(js["steps"][0]["fz"].get<double>(), 0.0);
+  // Failure is never a number: an iteration cap that cannot be met ends with exit code 3, the
+  // residual history, and the finished steps labelled.
+  r = run("contact --surface " + s + " --problem normal --uz 1e-4 --steps 2 --refine 1 --tol 1e-30 --max-iterations 3 --json " + j);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
+  std::ifstream g(j);
+  const auto jf = nlohmann::json::parse(g);
+  EXPECT_EQ(jf["status"], "failed");
+  r = run("contact --surface " + path("nope.h5") + " --uz 1e-4");
+  EXPECT_EQ(r.code, 2);
+}
+
 TEST_F(Cli, MissingFile) { expect_bad_input(path("nope.h5"), "no such file"); }
 
 TEST_F(Cli, NotHdf5) {

@@ -50,6 +50,10 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.follow_geometry = opt.follow_geometry;
   load.damping = opt.damping;
   load.tolerance = opt.tolerance;
+  load.max_outer_iterations = opt.max_iterations;
+  load.face_maps = opt.face_maps;
+  res.face_nx = std::size_t(b.nx + 1);
+  res.face_ny = std::size_t(b.ny + 1);
   const int total = opt.normal_steps + (opt.shear ? opt.shear_steps : 0);
   for (int k = 1; k <= total; ++k) {
     const bool normal_phase = k <= opt.normal_steps;
@@ -76,6 +80,9 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.converged = s.converged;
     st.message = s.message;
     st.history = s.history;
+    st.face_pressure = s.face_pressure;
+    st.face_gap = s.face_gap;
+    st.face_status = s.face_status;
     res.steps.push_back(st);
     if (on_step) on_step(st);
     if (!s.converged) {
@@ -83,6 +90,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       break;
     }
   }
+  if (!opt.vts_path.empty()) block.write_vts(opt.vts_path);
   res.wall_s = MPI_Wtime() - t_start;
   return res;
 }

@@ -26,6 +26,9 @@ struct ContactTestOptions {
   double young = 1.0, poisson = 0.45;
   bool follow_geometry = true;
   double damping = 0.8, tolerance = 1e-6;
+  int max_iterations = 300;  // Signorini iterations per step
+  bool face_maps = false;    // keep contact-face maps per step (rank 0)
+  std::string vts_path;      // write the deformed block of the last step (.vts), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
 };
 
@@ -38,10 +41,12 @@ struct ContactStep {
   bool converged = false;
   std::string message;
   std::vector<double> history;
+  std::vector<double> face_pressure, face_gap, face_status;  // (ny+1) x (nx+1), when requested
 };
 
 struct ContactTestResult {
   std::size_t nodes = 0, dofs = 0, face_nodes = 0;
+  std::size_t face_nx = 0, face_ny = 0;  // face nodes per row, rows
   double face_spacing = 0, rms_slope = 0, e_star = 0;
   std::vector<ContactStep> steps;
   bool failed = false;

@@ -91,6 +91,18 @@ struct ElasticBlock::Impl {
     check(DMDAGetCorners(da, &xs, &ys, &zs, &xm, &ym, &zm), "DMDAGetCorners");
     z.resize(spec.nz + 1);
     for (int k = 0; k <= spec.nz; ++k) z[k] = spec.lz * std::pow(double(k) / spec.nz, spec.grading);
+    // Node coordinates (for output): uniform in x, y, graded in z.
+    check(DMDASetUniformCoordinates(da, 0, spec.lx, 0, spec.ly, 0, spec.lz), "DMDASetUniformCoordinates");
+    DM cda;
+    Vec coords;
+    check(DMGetCoordinateDM(da, &cda), "DMGetCoordinateDM");
+    check(DMGetCoordinates(da, &coords), "DMGetCoordinates");
+    DMDACoor3d*** c;
+    check(DMDAVecGetArray(cda, coords, &c), "DMDAVecGetArray");
+    for (PetscInt k = zs; k < zs + zm; ++k)
+      for (PetscInt j = ys; j < ys + ym; ++j)
+        for (PetscInt i = xs; i < xs + xm; ++i) c[k][j][i].z = z[k];
+    check(DMDAVecRestoreArray(cda, coords, &c), "DMDAVecRestoreArray");
   }
 
   void assemble() {
@@ -134,6 +146,14 @@ ElasticBlock::~ElasticBlock() {
   if (impl_->K) MatDestroy(&impl_->K);
   if (impl_->da) DMDestroy(&impl_->da);
   delete impl_;
+}
+
+void ElasticBlock::write_vts(const std::string& path) const {
+  PetscViewer viewer;
+  check(PetscViewerVTKOpen(PETSC_COMM_WORLD, path.c_str(), FILE_MODE_WRITE, &viewer), "PetscViewerVTKOpen");
+  check(PetscObjectSetName(reinterpret_cast<PetscObject>(impl_->u), "displacement"), "PetscObjectSetName");
+  check(VecView(impl_->u, viewer), "VecView");
+  check(PetscViewerDestroy(&viewer), "PetscViewerDestroy");
 }
 
 std::size_t ElasticBlock::nodes() const {
@@ -236,6 +256,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   const double reach = std::max(s.lz, 1e-12);  // rays look this far for the obstacle
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
   double alpha_now = load.damping;
+  std::vector<double> normal_force(face.size(), 0.0);  // N, per face node, last linearisation
   int first_its = -1;  // CG iterations with a fresh preconditioner
   std::vector<double> prev_corr(3 * face.size(), 0.0);
   for (int outer = 0; outer < outer_max; ++outer) {
@@ -374,6 +395,13 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     double ct = double(contact), ctot;
     MPI_Allreduce(&ct, &ctot, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     out.contact_nodes = std::size_t(ctot);
+    {
+      const PetscScalar* ra;
+      VecGetArrayRead(r, &ra);
+      for (std::size_t n = 0; n < face.size(); ++n)
+        normal_force[n] = m.active[n] ? ra[face[n].row[2] - m.rstart] : 0.0;
+      VecRestoreArrayRead(r, &ra);
+    }
 
     // 4. Damped correction and its size on the contact face.
     check(MatMult(R, uh, ustar), "MatMult");
@@ -446,6 +474,25 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
     sep += std::max(0.0, p.z - h);
     pen = std::max(pen, h - p.z);
+  }
+  if (load.face_maps) {
+    const std::size_t nfx = std::size_t(s.nx + 1), nf = nfx * std::size_t(s.ny + 1);
+    std::vector<double> local(3 * nf, 0.0);
+    for (std::size_t n = 0; n < face.size(); ++n) {
+      const FaceNode& f = face[n];
+      const std::size_t idx = std::size_t(f.j) * nfx + std::size_t(f.i);
+      // Nodal area: a quarter cell per adjacent cell.
+      const double wx = (f.i == 0 || f.i == s.nx) ? 0.5 : 1.0, wy = (f.j == 0 || f.j == s.ny) ? 0.5 : 1.0;
+      local[idx] = normal_force[n] / (wx * wy * m.hx() * m.hy());
+      const Vec3 p{f.x0.x + uu[f.row[0] - m.rstart], f.x0.y + uu[f.row[1] - m.rstart], uu[f.row[2] - m.rstart]};
+      local[nf + idx] = p.z - (load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0);
+      local[2 * nf + idx] = m.active[n] ? 1.0 : 0.0;
+    }
+    std::vector<double> global(3 * nf, 0.0);
+    MPI_Reduce(local.data(), global.data(), int(3 * nf), MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
+    out.face_pressure.assign(global.begin(), global.begin() + nf);
+    out.face_gap.assign(global.begin() + nf, global.begin() + 2 * nf);
+    out.face_status.assign(global.begin() + 2 * nf, global.end());
   }
   VecRestoreArrayRead(r, &rr);
   VecRestoreArrayRead(m.u, &uu);

@@ -45,6 +45,7 @@ struct ContactLoad {
   double ksp_rtol = 1e-9;
   int max_active_set_iterations = 60;
   bool reuse_preconditioner = true;  // keep one AMG hierarchy per load step (rebuilt if CG slows)
+  bool face_maps = false;            // gather the contact-face maps below on rank 0
 };
 
 struct ContactSolution {
@@ -59,6 +60,10 @@ struct ContactSolution {
   std::string message;
   std::vector<double> history;    // relative change of the face displacement per outer iteration
   double final_damping = 0;       // alpha_c at the end (halved while the iteration stagnated)
+  // Contact-face maps, (nx+1) x (ny+1) row-major (rows = y), on rank 0 when requested:
+  std::vector<double> face_pressure;  // Pa, normal contact force / nodal area
+  std::vector<double> face_gap;       // m, vertical gap between the deformed face and the obstacle
+  std::vector<double> face_status;    // 1 in contact, 0 free
 };
 
 // Builds the mesh and the stiffness matrix once; solve() may be called for many loads and
@@ -71,6 +76,9 @@ class ElasticBlock {
   ElasticBlock& operator=(const ElasticBlock&) = delete;
 
   ContactSolution solve(const ContactLoad& load);
+  // The deformed block (displacement field on the graded grid) as a VTK structured grid
+  // (.vts, ParaView), written through PETSc's VTK viewer.
+  void write_vts(const std::string& path) const;
   std::size_t nodes() const;
   std::size_t dofs() const { return 3 * nodes(); }
 
