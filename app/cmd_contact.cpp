@@ -65,8 +65,9 @@ int run_contact(ContactCli c) {
   char name[] = "wetroad";
   char* args[] = {name, nullptr};
   char** argv = args;
-  PetscSession petsc(&argc, &argv);
+  // Options go in before initialisation so that start-up options such as -log_view work.
   if (!c.petsc.empty()) PetscOptionsInsertString(nullptr, c.petsc.c_str());
+  PetscSession petsc(&argc, &argv);
   int rank = 0, ranks = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);

@@ -25,7 +25,7 @@ struct ContactTestOptions {
   double grading = 2.0;
   double young = 1.0, poisson = 0.45;
   bool follow_geometry = true;
-  double damping = 0.8, tolerance = 1e-6;
+  double damping = 0.8, tolerance = 1e-5;
   int max_iterations = 300;  // Signorini iterations per step
   bool face_maps = false;    // keep contact-face maps per step (rank 0)
   std::string vts_path;      // write the deformed block of the last step (.vts), if set

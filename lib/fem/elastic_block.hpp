@@ -40,9 +40,9 @@ struct ContactLoad {
   const PeriodicObstacle* obstacle = nullptr;
   bool follow_geometry = true;   // Algorithm 1 (rays, rotated normals); false: one solve, u_z >= h
   double damping = 0.8;          // alpha_c
-  double tolerance = 1e-6;       // relative change of the contact-face displacement
+  double tolerance = 1e-5;       // relative change of the contact-face displacement
   int max_outer_iterations = 300;
-  double ksp_rtol = 1e-9;
+  double ksp_rtol = 1e-7;
   int max_active_set_iterations = 60;
   bool reuse_preconditioner = true;  // keep one AMG hierarchy per load step (rebuilt if CG slows)
   bool face_maps = false;            // gather the contact-face maps below on rank 0
