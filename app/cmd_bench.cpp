@@ -94,14 +94,15 @@ int run_hertz(const BenchCli& c) {
   if (rank != 0) return 0;
   std::printf("Hertz: paraboloid R = %g m pressed %g m into a 20 mm block (E = 1, nu = 0.45)\n", c.hertz_radius,
               c.hertz_uz);
-  std::printf("  %5s %10s %9s %12s %10s %10s %9s %9s %8s\n", "n", "h [m]", "nodes", "Fz [N]", "a_fem", "a_Hertz(F)",
-              "err a", "err F", "wall s");
+  std::printf("  %5s %10s %9s %12s %10s %10s %9s %9s %9s %9s %8s\n", "n", "h [m]", "nodes", "Fz [N]", "a_count",
+              "a_Hertz(F)", "err a", "err F", "fit a", "fit p0", "wall s");
   double prev = 0;
   for (const auto& r : rows) {
     const double e = r["radius_error"].get<double>();
-    std::printf("  %5d %10.3g %9zu %12.5e %10.5g %10.5g %8.2f%% %8.2f%% %8.1f", r["n"].get<int>(), r["h"].get<double>(),
-                r["nodes"].get<std::size_t>(), r["fz"].get<double>(), r["a_fem"].get<double>(),
-                r["a_hertz"].get<double>(), 100 * e, 100 * r["force_error"].get<double>(), r["wall_s"].get<double>());
+    std::printf("  %5d %10.3g %9zu %12.5e %10.5g %10.5g %8.2f%% %8.2f%% %8.2f%% %8.2f%% %8.1f", r["n"].get<int>(),
+                r["h"].get<double>(), r["nodes"].get<std::size_t>(), r["fz"].get<double>(), r["a_fem"].get<double>(),
+                r["a_hertz"].get<double>(), 100 * e, 100 * r["force_error"].get<double>(),
+                100 * r["fit_radius_error"].get<double>(), 100 * r["fit_p0_error"].get<double>(), r["wall_s"].get<double>());
     if (prev != 0 && e != 0) std::printf("   order %.2f", std::log(std::abs(prev / e)) / std::log(2.0));
     std::printf("\n");
     prev = e;

@@ -264,10 +264,28 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
     load.follow_geometry = false;  // Hertz's linearised (small-slope) geometry
     load.uz = uz;
     load.ksp_rtol = 1e-8;
+    load.face_maps = true;
     const ContactSolution s = block.solve(load);
     const double h = L / n;
     const double a_num = std::sqrt(double(s.contact_nodes) * h * h / M_PI);
     const double a_hertz = std::cbrt(3 * s.fz * radius / (4 * e_star));
+    // Hertz's pressure p = p0 sqrt(1 - r^2/a^2): p^2 is linear in r^2, so a least-squares line
+    // through the interior contact nodes (p > 0, away from the rim) gives a and p0 smoothly.
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, cnt = 0;
+    for (int j = 0; j <= n && !s.face_pressure.empty(); ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double p = s.face_pressure[std::size_t(j) * (n + 1) + i];
+        const double r2 = std::pow(i * h - L / 2, 2) + std::pow(j * h - L / 2, 2);
+        if (p <= 0 || r2 > 0.8 * a_num * a_num) continue;
+        sx += r2;
+        sy += p * p;
+        sxx += r2 * r2;
+        sxy += r2 * p * p;
+        cnt += 1;
+      }
+    const double slope = (cnt * sxy - sx * sy) / (cnt * sxx - sx * sx), icpt = (sy - slope * sx) / cnt;
+    const double a_fit = std::sqrt(-icpt / slope), p0_fit = std::sqrt(icpt);
+    const double p0_hertz = 3 * s.fz / (2 * M_PI * a_hertz * a_hertz);
     rows.push_back({{"n", n},
                     {"h", h},
                     {"nodes", block.nodes()},
@@ -276,6 +294,11 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
                     {"a_fem", a_num},
                     {"a_hertz", a_hertz},
                     {"radius_error", a_num / a_hertz - 1},
+                    {"a_fit", a_fit},
+                    {"p0_fit", p0_fit},
+                    {"p0_hertz", p0_hertz},
+                    {"fit_radius_error", a_fit / a_hertz - 1},
+                    {"fit_p0_error", p0_fit / p0_hertz - 1},
                     {"force_error", s.fz / (4 * e_star * a_num * a_num * a_num / (3 * radius)) - 1},
                     {"converged", s.converged},
                     {"wall_s", now() - t0}});
