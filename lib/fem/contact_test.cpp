@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "lib/core/errors.hpp"
 
@@ -60,7 +61,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     load.uz = normal_phase ? opt.uz * k / opt.normal_steps : opt.uz;
     load.ux = normal_phase ? 0.0 : opt.ux * (k - opt.normal_steps) / opt.shear_steps;
     const double t0 = MPI_Wtime();
-    const ContactSolution s = block.solve(load);
+    ContactSolution s = block.solve(load);
     ContactStep st;
     st.uz = load.uz;
     st.ux = load.ux;
@@ -79,10 +80,10 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.wall_s = MPI_Wtime() - t0;
     st.converged = s.converged;
     st.message = s.message;
-    st.history = s.history;
-    st.face_pressure = s.face_pressure;
-    st.face_gap = s.face_gap;
-    st.face_status = s.face_status;
+    st.history = std::move(s.history);
+    st.face_pressure = std::move(s.face_pressure);  // maps can be large: move, do not copy
+    st.face_gap = std::move(s.face_gap);
+    st.face_status = std::move(s.face_status);
     res.steps.push_back(st);
     if (on_step) on_step(st);
     if (!s.converged) {
