@@ -58,8 +58,8 @@ int run_contact(ContactCli c) {
   c.opt.follow_geometry = !c.vertical;
   c.opt.rms_slope = rms_slope_finite_difference(s.map);
   c.opt.face_maps = !c.out.empty();
-  std::string vts_tmp;
-  if (!c.vtu.empty()) c.opt.vts_path = vts_tmp = temporary_sibling(c.vtu) + ".vts";
+  std::string vtu_tmp;
+  if (!c.vtu.empty()) c.opt.vtu_path = vtu_tmp = temporary_sibling(c.vtu) + ".vtu";
 
   int argc = 1;
   char name[] = "wetroad";
@@ -96,16 +96,30 @@ int run_contact(ContactCli c) {
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
-                     {"grading", c.opt.grading}, {"damping", c.opt.damping}, {"tolerance", c.opt.tolerance},
+                     {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
+                     {"damping", c.opt.damping}, {"tolerance", c.opt.tolerance},
                      {"follow_geometry", c.opt.follow_geometry}, {"petsc", c.petsc}};
-  prov.model = "fem: Q1 hexahedra on a graded structured block, iterative Signorini (thesis Alg. 1), PDAS + CG/GAMG";
-  prov.timings = {{"total", r.wall_s}};
+  prov.model =
+      "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
+      "(thesis Alg. 1), PDAS + CG/GAMG";
+  double t_lin = 0, t_rot = 0, t_sol = 0;
+  for (const auto& st : r.steps) {
+    t_lin += st.wall_linearise;
+    t_rot += st.wall_rotate;
+    t_sol += st.wall_solve;
+  }
+  prov.timings = {{"setup", r.wall_setup}, {"linearise", t_lin}, {"rotate", t_rot}, {"solve", t_sol},
+                  {"total", r.wall_s}};
   nlohmann::json j = {{"model", "fem"},
                       {"nodes", r.nodes},
                       {"dofs", r.dofs},
                       {"ranks", ranks},
                       {"wall_s", r.wall_s},
                       {"face_nodes", r.face_nodes},
+                      {"mesh_points", r.mesh_points},
+                      {"elements", r.elements},
+                      {"layers", r.layers},
+                      {"coarsenings", r.coarsenings},
                       {"face_spacing", r.face_spacing},
                       {"rms_slope", r.rms_slope},
                       {"e_star", r.e_star},
@@ -130,7 +144,7 @@ int run_contact(ContactCli c) {
     w.write_attr("/", "provenance", prov.to_json().dump());
     w.commit();
   }
-  if (rank == 0 && !vts_tmp.empty() && !r.steps.empty()) commit_file(vts_tmp, c.vtu);
+  if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
   if (r.failed) {
     const ContactStep& last = r.steps.back();
     if (rank == 0) {
@@ -142,7 +156,12 @@ int run_contact(ContactCli c) {
     }
     return 3;
   }
-  if (talk) std::printf("  %zu nodes, %zu dofs, %d rank(s), %.2f s\n", r.nodes, r.dofs, ranks, r.wall_s);
+  if (talk) {
+    std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s)\n",
+                r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks);
+    std::printf("  timing [s]: setup %.2f  linearise %.2f  rotate %.2f  solve %.2f  total %.2f\n", r.wall_setup,
+                t_lin, t_rot, t_sol, r.wall_s);
+  }
   return 0;
 }
 
@@ -158,8 +177,9 @@ Command add_contact(CLI::App& root) {
       "by --ux in --steps steps; mu = Fx / Fz. Contact: the thesis's iterative Signorini scheme (rays along\n"
       "the deformed face normals against the triangulated obstacle, constraints rotated into the obstacle's\n"
       "normal frames, primal-dual active set with CG + GAMG, damped corrections). MPI: mpirun -np N.\n"
-      "Current limits: the block mesh is structured (uniform in-plane at the face spacing, graded in z),\n"
-      "so large obstacles at fine refinement need much memory.\n"
+      "Mesh: trilinear bricks; the face lattice (surface spacing / --refine) for --layers layers, then the\n"
+      "in-plane spacing doubles every --layers layers while the cell counts stay even (hanging nodes\n"
+      "constrained); the coarsest level thickens geometrically up to the top.\n"
       "Example: wetroad contact --surface road.h5 --problem shear --uz 9e-3 --ux 1e-3 --json mu.json");
   s->add_option("--surface", c->surface, "surface file (periodic HDF5 height map)")->required();
   s->add_option("--wet", c->wet, "wet surface from `wetroad fill` (used as the obstacle instead)");
@@ -169,8 +189,9 @@ Command add_contact(CLI::App& root) {
   s->add_option("--steps", c->steps, "load steps per phase")->capture_default_str();
   s->add_option("--refine", c->opt.refine, "contact-face spacing = surface spacing / refine")->capture_default_str();
   s->add_option("--height", c->opt.height, "block height in m (default: the period, a cube)");
-  s->add_option("--nz", c->opt.nz, "element layers (default: bottom layer about the face spacing)");
-  s->add_option("--grading", c->opt.grading, "layer grading exponent towards the contact face")->capture_default_str();
+  s->add_option("--layers", c->opt.layers_per_level, "brick layers at each in-plane spacing")->capture_default_str();
+  s->add_option("--coarsen", c->opt.max_coarsenings, "in-plane spacing doublings allowed away from the face")
+      ->capture_default_str();
   s->add_option("--E", c->opt.young, "Young's modulus, Pa (forces scale with it)")->capture_default_str();
   s->add_option("--nu", c->opt.poisson, "Poisson's ratio")->capture_default_str();
   s->add_option("--damping", c->opt.damping, "Signorini correction damping alpha_c")->capture_default_str();
@@ -182,9 +203,12 @@ Command add_contact(CLI::App& root) {
   s->add_option("--model", c->model, "contact model: fem")->capture_default_str();
   s->add_option("--json", c->json, "write the per-step results as JSON (SI units)");
   s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5");
-  s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (VTK structured grid)");
+  s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)");
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
+  s->add_flag("--facet-normals", c->opt.facet_normals,
+              "constrain along the hit triangle's normal instead of the smooth vertex-normal blend");
+  s->add_flag("--trace", c->opt.trace, "print every Signorini iteration (change, contact nodes, iterations, time)");
   return {s, [c] { return run_contact(*c); }};
 }
 

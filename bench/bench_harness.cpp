@@ -251,10 +251,8 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
   nlohmann::json rows = nlohmann::json::array();
   for (int n : meshes) {
     BlockSpec b;
-    b.lx = b.ly = b.lz = L;
-    b.nx = b.ny = n;
-    b.grading = 2.0;
-    b.nz = int(std::ceil(std::sqrt(double(n))));
+    b.mesh.lx = b.mesh.ly = b.mesh.lz = L;
+    b.mesh.nx = b.mesh.ny = n;
     b.young = young;
     b.poisson = nu;
     const double t0 = now();

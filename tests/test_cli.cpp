@@ -209,10 +209,10 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   const std::string s = path("s.h5"), j = path("c.json");
   ASSERT_EQ(run("synth --size 12 --q0-ratio 2 --dx 1e-4 --h0 2e-5 --seed 4 -o " + s).code, 0);
   CliRun r = run("contact --surface " + s + " --problem shear --uz 1e-4 --ux 2e-5 --steps 1 --refine 1 --json " + j +
-                 " --out " + path("c.h5") + " --vtu " + path("c.vts"));
+                 " --out " + path("c.h5") + " --vtu " + path("c.vtu"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("c.h5")));
-  EXPECT_TRUE(fs::exists(path("c.vts")));
+  EXPECT_TRUE(fs::exists(path("c.vtu")));
   std::ifstream f(j);
   const auto js = nlohmann::json::parse(f);
   for (const char* key : {"model", "nodes", "dofs", "ranks", "wall_s"}) EXPECT_TRUE(js.contains(key)) << key;

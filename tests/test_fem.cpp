@@ -1,6 +1,7 @@
 // FEM contact solver: exact cases. Runs under MPI too (ctest runs it on 1 and 2 ranks).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lib/fem/elastic_block.hpp"
@@ -10,17 +11,19 @@ namespace wr {
 namespace {
 
 // A flat obstacle and a frictionless top: uniaxial compression, Fz = E A dz / Lz exactly
-// (trilinear elements represent the uniform strain state), whatever the grading.
+// (trilinear elements and the hanging-node interpolation represent the uniform strain
+// state), whatever the grading: none, or in-plane doublings every layer or every 2 layers.
 TEST(Fem, UniaxialCompressionOnAFlatObstacle) {
-  for (double grading : {1.0, 2.0}) {
+  for (int layers : {0, 1, 2}) {
     BlockSpec b;
-    b.lx = 0.03;
-    b.ly = 0.02;
-    b.lz = 0.025;
-    b.nx = 6;
-    b.ny = 5;
-    b.nz = 7;
-    b.grading = grading;
+    b.mesh.lx = 0.03;
+    b.mesh.ly = 0.02;
+    b.mesh.lz = 0.025;
+    b.mesh.nx = 16;
+    b.mesh.ny = 8;
+    b.mesh.min_cells = 2;
+    b.mesh.layers_per_level = std::max(layers, 1);
+    b.mesh.max_coarsenings = layers == 0 ? 0 : 16;
     b.young = 3.0e6;
     b.poisson = 0.45;
     ElasticBlock block(b);
@@ -31,8 +34,11 @@ TEST(Fem, UniaxialCompressionOnAFlatObstacle) {
     load.tolerance = 1e-12;
     const ContactSolution s = block.solve(load);
     ASSERT_TRUE(s.converged) << s.message;
-    const double expected = b.young * b.lx * b.ly * load.uz / b.lz;
-    EXPECT_NEAR(s.fz / expected, 1.0, 1e-8) << "grading " << grading;
+    if (layers > 0) {
+      EXPECT_GE(block.mesh().coarsenings(), 2);
+    }
+    const double expected = b.young * b.mesh.lx * b.mesh.ly * load.uz / b.mesh.lz;
+    EXPECT_NEAR(s.fz / expected, 1.0, 1e-8) << "layers " << layers;
     EXPECT_NEAR(s.fx / expected, 0.0, 1e-8);
     EXPECT_EQ(s.contact_nodes, s.face_nodes);
     EXPECT_LT(s.max_penetration, 1e-12);
@@ -55,9 +61,7 @@ HeightMap cap_map(std::size_t n, double L) {
 // geometry (rays, rotated normals) and the vertical linearisation agree for this gentle cap.
 TEST(Fem, PartialContactOnACapIsAdmissible) {
   BlockSpec b;
-  b.nx = b.ny = 12;
-  b.nz = 6;
-  b.grading = 1.5;
+  b.mesh.nx = b.mesh.ny = 12;
   const PeriodicObstacle cap(cap_map(48, 0.03));
   for (bool follow : {false, true}) {
     ElasticBlock block(b);
@@ -88,10 +92,9 @@ TEST(Fem, PartialContactOnACapIsAdmissible) {
 // linearisation (no rotated normals) cannot see it and gives Fx = 0.
 TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
   BlockSpec b;
-  b.nx = 32;
-  b.ny = 4;
-  b.nz = 8;
-  b.grading = 1.5;
+  b.mesh.nx = 32;
+  b.mesh.ny = 4;
+  b.mesh.min_cells = 2;
   const std::size_t n = 64;
   const double L = 0.03, dx = L / n, slope = 0.2;
   double mu_follow[2] = {0, 0};
@@ -115,7 +118,9 @@ TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
       ASSERT_TRUE(s.converged) << s.message;
       const double mu = s.fx / s.fz;
       if (follow) {
-        EXPECT_LT(s.max_penetration, 1e-8);  // nodes stay on the obstacle (1e-5 of the press)
+        // Nodes stay on the obstacle up to the linearisation error left at the stopping
+        // tolerance (relative change 1e-5): a few times 1e-5 of the press.
+        EXPECT_LT(s.max_penetration, 10 * load.tolerance * load.uz);
         EXPECT_GT(dir * mu, 0.03) << "dir " << dir;
         EXPECT_LT(dir * mu, 0.2 + 1e-9) << "dir " << dir;
         mu_follow[dir > 0 ? 0 : 1] = mu;

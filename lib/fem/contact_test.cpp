@@ -18,6 +18,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   if (!(opt.young > 0)) throw InputError("--E", "must be > 0 Pa");
   if (!(opt.poisson > -1 && opt.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
   if (!(opt.rms_slope > 0)) throw InputError("--surface", "the obstacle has no slope (flat surface)");
+  if (opt.layers_per_level < 1) throw InputError("--layers", "must be >= 1");
+  if (opt.max_coarsenings < 0) throw InputError("--coarsen", "must be >= 0");
   if (opt.normal_steps < 1 || (opt.shear && opt.shear_steps < 1)) throw InputError("--steps", "must be >= 1");
 
   const double t_start = MPI_Wtime();
@@ -28,23 +30,28 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   const PeriodicObstacle ob(shifted);
 
   BlockSpec b;
-  b.lx = obstacle.lx();
-  b.ly = obstacle.ly();
-  b.lz = opt.height > 0 ? opt.height : b.lx;
-  b.nx = int(obstacle.nx) * opt.refine;
-  b.ny = int(obstacle.ny) * opt.refine;
+  b.mesh.lx = obstacle.lx();
+  b.mesh.ly = obstacle.ly();
+  b.mesh.lz = opt.height > 0 ? opt.height : b.mesh.lx;
+  b.mesh.nx = int(obstacle.nx) * opt.refine;
+  b.mesh.ny = int(obstacle.ny) * opt.refine;
+  b.mesh.layers_per_level = opt.layers_per_level;
+  b.mesh.max_coarsenings = opt.max_coarsenings;
   res.face_spacing = obstacle.dx / opt.refine;
-  b.grading = opt.grading;
-  b.nz = opt.nz > 0 ? opt.nz : std::max(2, int(std::ceil(std::pow(b.lz / res.face_spacing, 1.0 / b.grading))));
   b.young = opt.young;
   b.poisson = opt.poisson;
   ElasticBlock block(b);
+  res.wall_setup = MPI_Wtime() - t_start;
   res.nodes = block.nodes();
   res.dofs = block.dofs();
-  res.face_nodes = std::size_t(b.nx + 1) * (b.ny + 1);
+  res.mesh_points = std::size_t(block.mesh().mesh_points());
+  res.elements = std::size_t(block.mesh().elements());
+  res.layers = block.mesh().layers();
+  res.coarsenings = block.mesh().coarsenings();
+  res.face_nodes = std::size_t(b.mesh.nx + 1) * (b.mesh.ny + 1);
   res.rms_slope = opt.rms_slope;
   res.e_star = opt.young / (1 - opt.poisson * opt.poisson);
-  const double a0 = b.lx * b.ly;
+  const double a0 = b.mesh.lx * b.mesh.ly;
 
   ContactLoad load;
   load.obstacle = &ob;
@@ -53,8 +60,10 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.tolerance = opt.tolerance;
   load.max_outer_iterations = opt.max_iterations;
   load.face_maps = opt.face_maps;
-  res.face_nx = std::size_t(b.nx + 1);
-  res.face_ny = std::size_t(b.ny + 1);
+  load.trace = opt.trace;
+  load.facet_normals = opt.facet_normals;
+  res.face_nx = std::size_t(b.mesh.nx + 1);
+  res.face_ny = std::size_t(b.mesh.ny + 1);
   const int total = opt.normal_steps + (opt.shear ? opt.shear_steps : 0);
   for (int k = 1; k <= total; ++k) {
     const bool normal_phase = k <= opt.normal_steps;
@@ -78,6 +87,9 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.active_set_iterations = s.active_set_iterations;
     st.linear_iterations = s.linear_iterations;
     st.wall_s = MPI_Wtime() - t0;
+    st.wall_linearise = s.wall_linearise;
+    st.wall_rotate = s.wall_rotate;
+    st.wall_solve = s.wall_solve;
     st.converged = s.converged;
     st.message = s.message;
     st.history = std::move(s.history);
@@ -91,7 +103,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       break;
     }
   }
-  if (!opt.vts_path.empty()) block.write_vts(opt.vts_path);
+  if (!opt.vtu_path.empty()) block.write_vtu(opt.vtu_path);
   res.wall_s = MPI_Wtime() - t_start;
   return res;
 }

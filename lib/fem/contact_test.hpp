@@ -21,14 +21,16 @@ struct ContactTestOptions {
   int shear_steps = 4;
   int refine = 2;           // contact-face spacing = obstacle spacing / refine
   double height = 0;        // m, block height (0: the period, a cube)
-  int nz = 0;               // element layers (0: from the grading, bottom layer ~ face spacing)
-  double grading = 2.0;
+  int layers_per_level = 2;  // brick layers at each in-plane spacing (graded_mesh.hpp)
+  int max_coarsenings = 16;  // in-plane doublings of the spacing away from the face (0: none)
   double young = 1.0, poisson = 0.45;
   bool follow_geometry = true;
   double damping = 0.8, tolerance = 1e-5;
   int max_iterations = 300;  // Signorini iterations per step
   bool face_maps = false;    // keep contact-face maps per step (rank 0)
-  std::string vts_path;      // write the deformed block of the last step (.vts), if set
+  bool trace = false;
+  bool facet_normals = false;  // constraint normals of the hit triangles instead of the smooth blend        // print every Signorini iteration (rank 0, stderr)
+  std::string vtu_path;      // write the deformed block of the last step (.vtu), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
 };
 
@@ -38,6 +40,7 @@ struct ContactStep {
   double separation = 0, max_penetration = 0;
   int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
   double wall_s = 0;
+  double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, phases of the step
   bool converged = false;
   std::string message;
   std::vector<double> history;
@@ -45,7 +48,9 @@ struct ContactStep {
 };
 
 struct ContactTestResult {
-  std::size_t nodes = 0, dofs = 0, face_nodes = 0;
+  std::size_t nodes = 0, dofs = 0, face_nodes = 0, elements = 0, mesh_points = 0;
+  int layers = 0, coarsenings = 0;
+  double wall_setup = 0;  // s, mesh and assembly
   std::size_t face_nx = 0, face_ny = 0;  // face nodes per row, rows
   double face_spacing = 0, rms_slope = 0, e_star = 0;
   std::vector<ContactStep> steps;

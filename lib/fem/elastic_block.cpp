@@ -1,13 +1,16 @@
 #include "lib/fem/elastic_block.hpp"
 
-#include <petscdmda.h>
 #include <petscksp.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
 #include <stdexcept>
+
+#include "lib/io/vtu_writer.hpp"
 
 namespace wr {
 namespace {
@@ -67,71 +70,163 @@ std::array<double, 9> frame_of(const Vec3& n) {
 
 struct ElasticBlock::Impl {
   BlockSpec spec;
-  DM da = nullptr;
+  std::unique_ptr<GradedMesh> mesh;
+  int rank = 0;
+  PetscInt own_begin = 0, own_end = 0;  // owned node ids
   Mat K = nullptr;
   Vec u = nullptr;  // current displacement, carried from load step to load step
-  std::vector<double> z;  // node heights, k = 0..nz
-  PetscInt xs, ys, zs, xm, ym, zm;
-  PetscInt rstart = 0;
-  std::vector<char> active;  // per owned bottom node, carried between solves
+  // The whole contact face, gathered on every rank (normals need the neighbours' positions).
+  VecScatter face_scatter = nullptr;
+  Vec face_u = nullptr;
+  std::vector<char> active;  // per owned face node, carried between solves
 
-  PetscInt global_dof(PetscInt i, PetscInt j, PetscInt k, int c) const {
-    return rstart + 3 * ((k - zs) * xm * ym + (j - ys) * xm + (i - xs)) + c;
-  }
-  double hx() const { return spec.lx / spec.nx; }
-  double hy() const { return spec.ly / spec.ny; }
+  PetscInt dof(std::int32_t node, int c) const { return 3 * PetscInt(node) + c; }
+  bool owns(std::int32_t node) const { return node >= own_begin && node < own_end; }
+  int face_nx() const { return spec.mesh.nx; }
+  int face_ny() const { return spec.mesh.ny; }
 
-  void make_grid() {
-    const PetscInt M = spec.nx + 1, N = spec.ny + 1, P = spec.nz + 1;
-    check(DMDACreate3d(PETSC_COMM_WORLD, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_BOX, M, N,
-                       P, PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 3, 1, nullptr, nullptr, nullptr, &da),
-          "DMDACreate3d");
-    check(DMSetFromOptions(da), "DMSetFromOptions");
-    check(DMSetUp(da), "DMSetUp");
-    check(DMDAGetCorners(da, &xs, &ys, &zs, &xm, &ym, &zm), "DMDAGetCorners");
-    z.resize(spec.nz + 1);
-    for (int k = 0; k <= spec.nz; ++k) z[k] = spec.lz * std::pow(double(k) / spec.nz, spec.grading);
-    // Node coordinates (for output): uniform in x, y, graded in z.
-    check(DMDASetUniformCoordinates(da, 0, spec.lx, 0, spec.ly, 0, spec.lz), "DMDASetUniformCoordinates");
-    DM cda;
-    Vec coords;
-    check(DMGetCoordinateDM(da, &cda), "DMGetCoordinateDM");
-    check(DMGetCoordinates(da, &coords), "DMGetCoordinates");
-    DMDACoor3d*** c;
-    check(DMDAVecGetArray(cda, coords, &c), "DMDAVecGetArray");
-    for (PetscInt k = zs; k < zs + zm; ++k)
-      for (PetscInt j = ys; j < ys + ym; ++j)
-        for (PetscInt i = xs; i < xs + xm; ++i) c[k][j][i].z = z[k];
-    check(DMDAVecRestoreArray(cda, coords, &c), "DMDAVecRestoreArray");
-  }
-
-  void assemble() {
-    check(DMCreateMatrix(da, &K), "DMCreateMatrix");
-    check(MatSetOption(K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
-    std::map<int, ElementMatrix> layer;  // one element matrix per layer thickness
-    MatStencil rows[24];
-    for (PetscInt k = zs; k < std::min<PetscInt>(zs + zm, spec.nz); ++k) {
-      auto it = layer.find(int(k));
-      if (it == layer.end())
-        it = layer.emplace(int(k), brick_stiffness(hx(), hy(), z[k + 1] - z[k], spec.young, spec.poisson)).first;
-      for (PetscInt j = ys; j < std::min<PetscInt>(ys + ym, spec.ny); ++j)
-        for (PetscInt i = xs; i < std::min<PetscInt>(xs + xm, spec.nx); ++i) {
-          for (int a = 0; a < 8; ++a)
-            for (int c = 0; c < 3; ++c) {
-              MatStencil& s = rows[a * 3 + c];
-              s.i = i + (a & 1);
-              s.j = j + ((a >> 1) & 1);
-              s.k = k + ((a >> 2) & 1);
-              s.c = c;
-            }
-          check(MatSetValuesStencil(K, 24, rows, 24, rows, it->second.data(), ADD_VALUES), "MatSetValuesStencil");
+  // Calls f(layer, ids, weights) for every brick that touches an owned node: ids = the distinct
+  // independent nodes behind the 8 corners, weights = 8 x ids.size() (row-major) interpolation.
+  template <class F>
+  void for_each_local_brick(F&& f) const {
+    const GradedMesh& g = *mesh;
+    std::vector<GradedMesh::Parent> ps;
+    std::vector<std::int32_t> ids;
+    std::vector<double> w;
+    for (int e = 0; e < g.layers(); ++e) {
+      const int l = g.layer_level(e);
+      // Hanging parents lie at most one cell beyond a brick: two cells of margin suffice.
+      const int i0 = std::max(0, g.owned_i_begin(rank, l) - 2);
+      const int i1 = std::min(g.cells_x(l), g.owned_i_end(rank, l) + 2);
+      for (int j = 0; j < g.cells_y(l); ++j)
+        for (int i = i0; i < i1; ++i) {
+          ids.clear();
+          bool mine = false;
+          int start[9];
+          ps.clear();
+          for (int c = 0; c < 8; ++c) {
+            int p, pi, pj;
+            g.corner(e, i, j, c, p, pi, pj);
+            start[c] = int(ps.size());
+            g.parents(p, pi, pj, ps);
+          }
+          start[8] = int(ps.size());
+          for (const auto& q : ps) {
+            if (std::find(ids.begin(), ids.end(), q.id) == ids.end()) ids.push_back(q.id);
+            mine |= owns(q.id);
+          }
+          if (!mine) continue;
+          w.assign(8 * ids.size(), 0.0);
+          for (int c = 0; c < 8; ++c)
+            for (int k = start[c]; k < start[c + 1]; ++k)
+              w[c * ids.size() + (std::find(ids.begin(), ids.end(), ps[k].id) - ids.begin())] += ps[k].weight;
+          f(e, ids, w);
         }
     }
+  }
+
+  void make_grid() {
+    int ranks = 1;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+    try {
+      mesh = std::make_unique<GradedMesh>(spec.mesh, ranks);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(std::string("block mesh: ") + e.what());
+    }
+    own_begin = mesh->owned_begin(rank);
+    own_end = mesh->owned_end(rank);
+  }
+
+  // Exact preallocation (rows of owned nodes only; every rank assembles its own rows from the
+  // bricks around them, so no entries travel between ranks), then the brick matrices through
+  // the hanging-node interpolation: K = sum_e C_e^T K_e C_e.
+  void assemble() {
+    const PetscInt n_own = own_end - own_begin;
+    std::vector<std::vector<std::int32_t>> cols(static_cast<std::size_t>(n_own));
+    for_each_local_brick([&](int, const std::vector<std::int32_t>& ids, const std::vector<double>&) {
+      for (std::int32_t r : ids)
+        if (owns(r)) {
+          auto& v = cols[std::size_t(r - own_begin)];
+          v.insert(v.end(), ids.begin(), ids.end());
+        }
+    });
+    std::vector<PetscInt> d_nnz(3 * std::size_t(n_own)), o_nnz(3 * std::size_t(n_own));
+    for (PetscInt r = 0; r < n_own; ++r) {
+      auto& v = cols[std::size_t(r)];
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+      PetscInt d = 0;
+      for (std::int32_t c : v) d += owns(c);
+      for (int c = 0; c < 3; ++c) {
+        d_nnz[3 * r + c] = 3 * d;
+        o_nnz[3 * r + c] = 3 * (PetscInt(v.size()) - d);
+      }
+      std::vector<std::int32_t>().swap(v);
+    }
+    check(MatCreate(PETSC_COMM_WORLD, &K), "MatCreate");
+    check(MatSetSizes(K, 3 * n_own, 3 * n_own, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+    check(MatSetType(K, MATAIJ), "MatSetType");
+    check(MatSetBlockSize(K, 3), "MatSetBlockSize");
+    check(MatSeqAIJSetPreallocation(K, 0, d_nnz.data()), "MatSeqAIJSetPreallocation");
+    check(MatMPIAIJSetPreallocation(K, 0, d_nnz.data(), 0, o_nnz.data()), "MatMPIAIJSetPreallocation");
+    check(MatSetOption(K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+
+    const GradedMesh& g = *mesh;
+    std::vector<ElementMatrix> layer_k;
+    for (int e = 0; e < g.layers(); ++e) {
+      const int l = g.layer_level(e);
+      layer_k.push_back(brick_stiffness(g.hx(l), g.hy(l), g.planes()[e + 1].z - g.planes()[e].z, spec.young,
+                                        spec.poisson));
+    }
+    std::vector<double> ke;
+    std::vector<PetscInt> rows, colidx;
+    for_each_local_brick([&](int e, const std::vector<std::int32_t>& ids, const std::vector<double>& w) {
+      const ElementMatrix& k8 = layer_k[std::size_t(e)];
+      const std::size_t n = ids.size(), m3 = 3 * n;
+      ke.assign(m3 * m3, 0.0);
+      for (int a = 0; a < 8; ++a)
+        for (std::size_t p = 0; p < n; ++p) {
+          const double wa = w[a * n + p];
+          if (wa == 0) continue;
+          for (int b = 0; b < 8; ++b)
+            for (std::size_t q = 0; q < n; ++q) {
+              const double wab = wa * w[b * n + q];
+              if (wab == 0) continue;
+              for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) ke[(3 * p + i) * m3 + 3 * q + j] += wab * k8[(a * 3 + i) * 24 + b * 3 + j];
+            }
+        }
+      colidx.clear();
+      for (std::int32_t id : ids)
+        for (int c = 0; c < 3; ++c) colidx.push_back(dof(id, c));
+      for (std::size_t p = 0; p < n; ++p) {
+        if (!owns(ids[p])) continue;
+        rows.assign({dof(ids[p], 0), dof(ids[p], 1), dof(ids[p], 2)});
+        check(MatSetValues(K, 3, rows.data(), PetscInt(m3), colidx.data(), &ke[3 * p * m3], ADD_VALUES),
+              "MatSetValues");
+      }
+    });
     check(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    check(MatGetOwnershipRange(K, &rstart, nullptr), "MatGetOwnershipRange");
-    check(DMCreateGlobalVector(da, &u), "DMCreateGlobalVector");
+    check(MatCreateVecs(K, &u, nullptr), "MatCreateVecs");
     check(VecSet(u, 0.0), "VecSet");
+
+    // Scatter of the whole face (all ranks receive all of it).
+    std::vector<PetscInt> idx;
+    for (int j = 0; j <= face_ny(); ++j)
+      for (int i = 0; i <= face_nx(); ++i)
+        for (int c = 0; c < 3; ++c) idx.push_back(dof(g.node(0, i, j), c));
+    IS is;
+    check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(idx.size()), idx.data(), PETSC_COPY_VALUES, &is), "ISCreateGeneral");
+    check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(idx.size()), &face_u), "VecCreateSeq");
+    check(VecScatterCreate(u, is, face_u, nullptr, &face_scatter), "VecScatterCreate");
+    ISDestroy(&is);
+  }
+
+  void gather_face() const {
+    check(VecScatterBegin(face_scatter, u, face_u, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(face_scatter, u, face_u, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
   }
 };
 
@@ -142,28 +237,73 @@ ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
 }
 
 ElasticBlock::~ElasticBlock() {
+  if (impl_->face_scatter) VecScatterDestroy(&impl_->face_scatter);
+  if (impl_->face_u) VecDestroy(&impl_->face_u);
   if (impl_->u) VecDestroy(&impl_->u);
   if (impl_->K) MatDestroy(&impl_->K);
-  if (impl_->da) DMDestroy(&impl_->da);
   delete impl_;
 }
 
-void ElasticBlock::write_vts(const std::string& path) const {
-  PetscViewer viewer;
-  check(PetscViewerVTKOpen(PETSC_COMM_WORLD, path.c_str(), FILE_MODE_WRITE, &viewer), "PetscViewerVTKOpen");
-  check(PetscObjectSetName(reinterpret_cast<PetscObject>(impl_->u), "displacement"), "PetscObjectSetName");
-  check(VecView(impl_->u, viewer), "VecView");
-  check(PetscViewerDestroy(&viewer), "PetscViewerDestroy");
-}
+const GradedMesh& ElasticBlock::mesh() const { return *impl_->mesh; }
 
-std::size_t ElasticBlock::nodes() const {
-  return std::size_t(impl_->spec.nx + 1) * (impl_->spec.ny + 1) * (impl_->spec.nz + 1);
+std::size_t ElasticBlock::nodes() const { return std::size_t(impl_->mesh->nodes()); }
+
+void ElasticBlock::write_vtu(const std::string& path) const {
+  const Impl& m = *impl_;
+  const GradedMesh& g = *m.mesh;
+  VecScatter to_zero;
+  Vec all;
+  check(VecScatterCreateToZero(m.u, &to_zero, &all), "VecScatterCreateToZero");
+  check(VecScatterBegin(to_zero, m.u, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(to_zero, m.u, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  if (m.rank == 0) {
+    const PetscScalar* ua;
+    VecGetArrayRead(all, &ua);
+    std::vector<double> points, disp;
+    std::vector<std::int64_t> first(g.planes().size() + 1, 0);  // first point of each plane
+    std::vector<GradedMesh::Parent> ps;
+    for (std::size_t p = 0; p < g.planes().size(); ++p) {
+      const int l = g.planes()[p].level;
+      for (int j = 0; j <= g.cells_y(l); ++j)
+        for (int i = 0; i <= g.cells_x(l); ++i) {
+          const Vec3 x = g.position(int(p), i, j);
+          points.insert(points.end(), {x.x, x.y, x.z});
+          ps.clear();
+          g.parents(int(p), i, j, ps);
+          double d[3] = {0, 0, 0};
+          for (const auto& q : ps)
+            for (int c = 0; c < 3; ++c) d[c] += q.weight * ua[3 * q.id + c];
+          disp.insert(disp.end(), {d[0], d[1], d[2]});
+        }
+      first[p + 1] = first[p] + std::int64_t(g.cells_x(l) + 1) * (g.cells_y(l) + 1);
+    }
+    VecRestoreArrayRead(all, &ua);
+    std::vector<std::int64_t> conn, offsets;
+    std::vector<std::uint8_t> types;
+    static const int vtk_order[8] = {0, 1, 3, 2, 4, 5, 7, 6};  // VTK_HEXAHEDRON corner order
+    for (int e = 0; e < g.layers(); ++e) {
+      const int l = g.layer_level(e);
+      for (int j = 0; j < g.cells_y(l); ++j)
+        for (int i = 0; i < g.cells_x(l); ++i) {
+          for (int c : vtk_order) {
+            int p, pi, pj;
+            g.corner(e, i, j, c, p, pi, pj);
+            conn.push_back(first[p] + std::int64_t(pj) * (g.cells_x(g.planes()[p].level) + 1) + pi);
+          }
+          offsets.push_back(std::int64_t(conn.size()));
+          types.push_back(12);
+        }
+    }
+    write_vtu_file(path, points, disp, conn, offsets, types);
+  }
+  VecScatterDestroy(&to_zero);
+  VecDestroy(&all);
 }
 
 namespace {
 
 struct FaceNode {
-  PetscInt i, j;
+  std::int32_t i, j;
   PetscInt row[3];  // global dofs
   Vec3 x0;          // reference position
   Vec3 normal{0, 0, 1};  // obstacle normal N of the current linearisation
@@ -186,42 +326,43 @@ void fill_rotation(Mat R, PetscInt rstart, PetscInt rend, const std::vector<Face
 
 ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   Impl& m = *impl_;
-  const BlockSpec& s = m.spec;
+  const GradedMesh& g = *m.mesh;
+  const int fnx = m.face_nx(), fny = m.face_ny();
   ContactSolution out;
-  out.face_nodes = std::size_t(s.nx + 1) * (s.ny + 1);
-  PetscInt rend;
-  check(MatGetOwnershipRange(m.K, nullptr, &rend), "MatGetOwnershipRange");
+  out.face_nodes = std::size_t(fnx + 1) * (fny + 1);
+  const PetscInt rstart = 3 * PetscInt(m.own_begin), rend = 3 * PetscInt(m.own_end);
 
   std::vector<FaceNode> face;
-  if (m.zs == 0)
-    for (PetscInt j = m.ys; j < m.ys + m.ym; ++j)
-      for (PetscInt i = m.xs; i < m.xs + m.xm; ++i) {
-        FaceNode f{i, j, {m.global_dof(i, j, 0, 0), m.global_dof(i, j, 0, 1), m.global_dof(i, j, 0, 2)},
-                   Vec3{i * m.hx(), j * m.hy(), 0.0}};
-        face.push_back(f);
-      }
+  for (int j = 0; j <= fny; ++j)
+    for (int i = g.owned_i_begin(m.rank, 0); i < g.owned_i_end(m.rank, 0); ++i) {
+      const std::int32_t id = g.node(0, i, j);
+      face.push_back(FaceNode{i, j, {m.dof(id, 0), m.dof(id, 1), m.dof(id, 2)}, g.position(0, i, j)});
+    }
   if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
 
   // Prescribed top dofs and the minimal pins of a frictionless top.
   std::vector<PetscInt> fixed_rows;
   std::vector<double> fixed_vals;
   std::vector<PetscInt> top_rows[3];
-  if (m.zs + m.zm == s.nz + 1)
-    for (PetscInt j = m.ys; j < m.ys + m.ym; ++j)
-      for (PetscInt i = m.xs; i < m.xs + m.xm; ++i)
-        for (int c = 0; c < 3; ++c) {
-          top_rows[c].push_back(m.global_dof(i, j, s.nz, c));
-          if (load.top == TopCondition::frictionless && c < 2) continue;
-          fixed_rows.push_back(m.global_dof(i, j, s.nz, c));
-          fixed_vals.push_back(c == 0 ? load.ux : (c == 1 ? 0.0 : -load.uz));
-        }
-  if (load.top == TopCondition::frictionless && m.zs == 0) {
-    if (m.xs == 0 && m.ys == 0) {  // in-plane rigid motion is free: pin it
-      fixed_rows.insert(fixed_rows.end(), {m.global_dof(0, 0, 0, 0), m.global_dof(0, 0, 0, 1)});
+  const int top = g.layers(), top_level = g.planes()[top].level;
+  for (int j = 0; j <= g.cells_y(top_level); ++j)
+    for (int i = g.owned_i_begin(m.rank, top_level); i < g.owned_i_end(m.rank, top_level); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const PetscInt row = m.dof(g.node(top, i, j), c);
+        top_rows[c].push_back(row);
+        if (load.top == TopCondition::frictionless && c < 2) continue;
+        fixed_rows.push_back(row);
+        fixed_vals.push_back(c == 0 ? load.ux : (c == 1 ? 0.0 : -load.uz));
+      }
+  if (load.top == TopCondition::frictionless) {
+    // In-plane rigid motion is free: pin two face corners.
+    const std::int32_t c0 = g.node(0, 0, 0), c1 = g.node(0, fnx, 0);
+    if (m.owns(c0)) {
+      fixed_rows.insert(fixed_rows.end(), {m.dof(c0, 0), m.dof(c0, 1)});
       fixed_vals.insert(fixed_vals.end(), {0.0, 0.0});
     }
-    if (m.xs + m.xm == s.nx + 1 && m.ys == 0) {
-      fixed_rows.push_back(m.global_dof(s.nx, 0, 0, 1));
+    if (m.owns(c1)) {
+      fixed_rows.push_back(m.dof(c1, 1));
       fixed_vals.push_back(0.0);
     }
   }
@@ -231,18 +372,17 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
 
   Mat R, Khat = nullptr, A = nullptr;
   check(MatCreate(PETSC_COMM_WORLD, &R), "MatCreate");
-  check(MatSetSizes(R, rend - m.rstart, rend - m.rstart, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetSizes(R, rend - rstart, rend - rstart, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
   check(MatSetType(R, MATAIJ), "MatSetType");
   check(MatSetBlockSize(R, 3), "MatSetBlockSize");
   check(MatSeqAIJSetPreallocation(R, 3, nullptr), "MatSeqAIJSetPreallocation");
   check(MatMPIAIJSetPreallocation(R, 3, nullptr, 0, nullptr), "MatMPIAIJSetPreallocation");
-  Vec uh, b, r, diag, ustar, ulocal;
+  Vec uh, b, r, diag, ustar;
   check(VecDuplicate(m.u, &uh), "VecDuplicate");
   check(VecDuplicate(m.u, &b), "VecDuplicate");
   check(VecDuplicate(m.u, &r), "VecDuplicate");
   check(VecDuplicate(m.u, &diag), "VecDuplicate");
   check(VecDuplicate(m.u, &ustar), "VecDuplicate");
-  check(DMCreateLocalVector(m.da, &ulocal), "DMCreateLocalVector");
   KSP ksp;
   check(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
@@ -253,24 +393,35 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
 
-  const double reach = std::max(s.lz, 1e-12);  // rays look this far for the obstacle
+  // Reaction on the top face along component c (z counted positive in compression), for traces.
+  auto top_force = [&](Vec v, int c) {
+    check(MatMult(m.K, v, r), "MatMult");
+    const PetscScalar* ra;
+    VecGetArrayRead(r, &ra);
+    double f = 0, fg = 0;
+    for (PetscInt row : top_rows[c]) f += ra[row - rstart];
+    VecRestoreArrayRead(r, &ra);
+    MPI_Allreduce(&f, &fg, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    return c == 2 ? -fg : fg;
+  };
+  const double reach = std::max(m.spec.mesh.lz, 1e-12);  // rays look this far for the obstacle
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
   double alpha_now = load.damping;
   std::vector<double> normal_force(face.size(), 0.0);  // N, per face node, last linearisation
   int first_its = -1;  // CG iterations with a fresh preconditioner
   std::vector<double> prev_corr(3 * face.size(), 0.0);
+  bool final_pass = false;
+  const double t_solve_start = MPI_Wtime();
   for (int outer = 0; outer < outer_max; ++outer) {
     out.outer_iterations = outer + 1;
     // 1. Linearise the contact at the current configuration.
-    check(DMGlobalToLocal(m.da, m.u, INSERT_VALUES, ulocal), "DMGlobalToLocal");
-    PetscScalar**** ul;
-    check(DMDAVecGetArrayDOFRead(m.da, ulocal, &ul), "DMDAVecGetArrayDOFRead");
-    PetscInt gxs, gys, gzs, gxm, gym, gzm;
-    DMDAGetGhostCorners(m.da, &gxs, &gys, &gzs, &gxm, &gym, &gzm);
-    auto X = [&](PetscInt i, PetscInt j) {
-      i = std::clamp(i, gxs, gxs + gxm - 1);
-      j = std::clamp(j, gys, gys + gym - 1);
-      return Vec3{i * m.hx() + ul[0][j][i][0], j * m.hy() + ul[0][j][i][1], ul[0][j][i][2]};
+    double t_phase = MPI_Wtime();
+    m.gather_face();
+    const PetscScalar* fu;
+    check(VecGetArrayRead(m.face_u, &fu), "VecGetArrayRead");
+    auto X = [&](int i, int j) {
+      const std::size_t k = 3 * (std::size_t(j) * (fnx + 1) + i);
+      return g.position(0, i, j) + Vec3{fu[k], fu[k + 1], fu[k + 2]};
     };
     for (FaceNode& f : face) {
       if (!load.obstacle) {
@@ -285,8 +436,8 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       }
       const Vec3 here = X(f.i, f.j);
       // Outward normal of the deformed face (pointing down), from the neighbours' positions.
-      const Vec3 t1 = X(std::min<PetscInt>(f.i + 1, s.nx), f.j) - X(std::max<PetscInt>(f.i - 1, 0), f.j);
-      const Vec3 t2 = X(f.i, std::min<PetscInt>(f.j + 1, s.ny)) - X(f.i, std::max<PetscInt>(f.j - 1, 0));
+      const Vec3 t1 = X(std::min(f.i + 1, fnx), f.j) - X(std::max(f.i - 1, 0), f.j);
+      const Vec3 t2 = X(f.i, std::min(f.j + 1, fny)) - X(f.i, std::max(f.j - 1, 0));
       const Vec3 n = t2.cross(t1).unit();
       const auto hit = load.obstacle->cast(here, n, reach);
       if (!hit) {
@@ -294,14 +445,16 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
         f.g = -INFINITY;
         continue;
       }
-      f.normal = hit->normal;
+      f.normal = load.facet_normals ? load.obstacle->normal(hit->point.x, hit->point.y) : hit->normal;
       f.g = hit->normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q
     }
-    DMDAVecRestoreArrayDOFRead(m.da, ulocal, &ul);
+    VecRestoreArrayRead(m.face_u, &fu);
+    out.wall_linearise += MPI_Wtime() - t_phase;
+    t_phase = MPI_Wtime();
 
     // 2. Rotate the face nodes into their constraint frames: Khat = R^T K R, uh = R^T u.
     check(MatZeroEntries(R), "MatZeroEntries");
-    fill_rotation(R, m.rstart, rend, face);
+    fill_rotation(R, rstart, rend, face);
     check(MatPtAP(m.K, R, Khat ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, 2.0, &Khat), "MatPtAP");
     check(MatSetBlockSize(Khat, 3), "MatSetBlockSize");
     if (!A) check(MatDuplicate(Khat, MAT_COPY_VALUES, &A), "MatDuplicate");
@@ -315,18 +468,31 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     const double unit_diag = diag_sum / double(diag_n);
     check(MatMultTranspose(R, m.u, uh), "MatMultTranspose");
 
-    // 3. Primal-dual active set on the bounds uh_z >= g at the face nodes.
+    out.wall_rotate += MPI_Wtime() - t_phase;
+    t_phase = MPI_Wtime();
+
+    // 3. Primal-dual active set on the bounds uh_z >= g at the face nodes. Early
+    // linearisations are only approximations of the final one: solve them loosely (CG
+    // tolerance a hundredth of the last relative change), tightening to ksp_rtol at the end.
+    double rtol = load.ksp_rtol;
+    if (load.inexact && load.follow_geometry && load.obstacle && !final_pass)
+      rtol = std::clamp(out.history.empty() ? 1e-3 : 0.01 * out.history.back(), load.ksp_rtol, 1e-3);
+    check(KSPSetTolerances(ksp, rtol, 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
     bool pdas_ok = false;
     std::size_t contact = 0;
     {
       const PetscScalar* a;
       VecGetArrayRead(uh, &a);
       for (std::size_t n = 0; n < face.size(); ++n)
-        if (std::isfinite(face[n].g) && a[face[n].row[2] - m.rstart] <= face[n].g) m.active[n] = 1;
+        if (std::isfinite(face[n].g) && a[face[n].row[2] - rstart] <= face[n].g) m.active[n] = 1;
         else if (!std::isfinite(face[n].g)) m.active[n] = 0;
       VecRestoreArrayRead(uh, &a);
     }
-    for (int it = 0; it < load.max_active_set_iterations; ++it) {
+    const bool early = load.follow_geometry && load.obstacle && !final_pass;
+    const int pdas_cap = early ? std::min(load.early_active_set_iterations, load.max_active_set_iterations)
+                               : load.max_active_set_iterations;
+    bool settled = false;
+    for (int it = 0; it < pdas_cap; ++it) {
       ++out.active_set_iterations;
       std::vector<PetscInt> rows = fixed_rows;
       std::vector<double> vals = fixed_vals;
@@ -370,7 +536,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       contact = 0;
       for (std::size_t n = 0; n < face.size(); ++n) {
         if (!std::isfinite(face[n].g)) continue;
-        const PetscInt l = face[n].row[2] - m.rstart;
+        const PetscInt l = face[n].row[2] - rstart;
         const bool now = ra[l] + da[l] * (face[n].g - ua[l]) > 0;
         changed |= now != bool(m.active[n]);
         m.active[n] = now;
@@ -382,9 +548,10 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       int any = 0;
       MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
       if (!any) {
-        pdas_ok = true;
+        pdas_ok = settled = true;
         break;
       }
+      if (early && it + 1 == pdas_cap) pdas_ok = true;  // the next Signorini iteration goes on
     }
     if (!pdas_ok) {
       if (out.message.empty())
@@ -399,22 +566,35 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       const PetscScalar* ra;
       VecGetArrayRead(r, &ra);
       for (std::size_t n = 0; n < face.size(); ++n)
-        normal_force[n] = m.active[n] ? ra[face[n].row[2] - m.rstart] : 0.0;
+        normal_force[n] = m.active[n] ? ra[face[n].row[2] - rstart] : 0.0;
       VecRestoreArrayRead(r, &ra);
     }
 
-    // 4. Damped correction and its size on the contact face.
+    out.wall_solve += MPI_Wtime() - t_phase;
+
+    // 4. Next iterate: Anderson-mixed (or damped) step towards the linearised solution u*.
     check(MatMult(R, uh, ustar), "MatMult");
     const PetscScalar* us;
     PetscScalar* uc;
     VecGetArrayRead(ustar, &us);
     VecGetArray(m.u, &uc);
+    // Convergence measure: the correction u* - u on the contact face relative to u* there
+    // (the l2 norm over the face nodes = the lumped boundary mass norm on the uniform face).
+    double face_sq[2] = {0, 0}, face_sq_g[2];
+    for (const FaceNode& f : face)
+      for (int c = 0; c < 3; ++c) {
+        const PetscInt l = f.row[c] - rstart;
+        face_sq[0] += (us[l] - uc[l]) * (us[l] - uc[l]);
+        face_sq[1] += us[l] * us[l];
+      }
+    MPI_Allreduce(face_sq, face_sq_g, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    const double change = face_sq_g[1] > 0 ? std::sqrt(face_sq_g[0] / face_sq_g[1]) : 0.0;
     // Damping: halved when the correction reverses (a node chattering between two contact
     // states across a kink of the obstacle), restored while corrections keep their direction.
     double cc = 0, cp = 0, pp = 0;
     for (std::size_t n = 0; n < face.size(); ++n)
       for (int c = 0; c < 3; ++c) {
-        const PetscInt l = face[n].row[c] - m.rstart;
+        const PetscInt l = face[n].row[c] - rstart;
         const double corr = us[l] - uc[l];
         cc += corr * corr;
         cp += corr * prev_corr[3 * n + c];
@@ -431,25 +611,22 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
         alpha_now = std::min(1.5 * alpha_now, load.damping);
     }
     const double alpha = load.follow_geometry ? alpha_now : 1.0;
-    double dc = 0, du = 0;
-    for (const FaceNode& f : face)
-      for (int c = 0; c < 3; ++c) {
-        const PetscInt l = f.row[c] - m.rstart;
-        const double corr = us[l] - uc[l];
-        dc += corr * corr;
-        du += (uc[l] + alpha * corr) * (uc[l] + alpha * corr);
-      }
-    PetscInt n_local;
-    VecGetLocalSize(m.u, &n_local);
-    for (PetscInt l = 0; l < n_local; ++l) uc[l] += alpha * (us[l] - uc[l]);
     VecRestoreArrayRead(ustar, &us);
     VecRestoreArray(m.u, &uc);
-    double loc[2] = {dc, du}, glob[2];
-    MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    // Relative size of the step actually taken on the contact face.
-    const double change = glob[1] > 0 ? alpha * std::sqrt(glob[0] / glob[1]) : 0.0;
+    check(VecScale(m.u, 1 - alpha), "VecScale");
+    check(VecAXPY(m.u, alpha, ustar), "VecAXPY");
     out.history.push_back(change);
+    const double trace_fz = load.trace ? top_force(ustar, 2) : 0, trace_fx = load.trace ? top_force(ustar, 0) : 0;
+    if (load.trace && m.rank == 0)
+      std::fprintf(stderr,
+                   "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  [%.1f s]\n",
+                   outer + 1, change, alpha, out.contact_nodes, settled ? "" : "+", out.active_set_iterations,
+                   out.linear_iterations, rtol, trace_fz, trace_fx, MPI_Wtime() - t_solve_start);
     out.final_damping = alpha;
+    if (change <= load.tolerance && (rtol > load.ksp_rtol || !settled) && !final_pass) {
+      final_pass = true;  // converged on loose solves: confirm with one full solve at ksp_rtol
+      continue;
+    }
     if (!load.follow_geometry || change <= load.tolerance) {
       check(VecCopy(ustar, m.u), "VecCopy");  // the undamped solution of the last linearisation
       out.converged = true;
@@ -466,25 +643,25 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   VecGetArrayRead(r, &rr);
   VecGetArrayRead(m.u, &uu);
   double fz = 0, fx = 0, fy = 0, sep = 0, pen = 0;
-  for (PetscInt row : top_rows[0]) fx += rr[row - m.rstart];
-  for (PetscInt row : top_rows[1]) fy += rr[row - m.rstart];
-  for (PetscInt row : top_rows[2]) fz -= rr[row - m.rstart];
+  for (PetscInt row : top_rows[0]) fx += rr[row - rstart];
+  for (PetscInt row : top_rows[1]) fy += rr[row - rstart];
+  for (PetscInt row : top_rows[2]) fz -= rr[row - rstart];
   for (const FaceNode& f : face) {
-    const Vec3 p{f.x0.x + uu[f.row[0] - m.rstart], f.x0.y + uu[f.row[1] - m.rstart], uu[f.row[2] - m.rstart]};
+    const Vec3 p{f.x0.x + uu[f.row[0] - rstart], f.x0.y + uu[f.row[1] - rstart], uu[f.row[2] - rstart]};
     const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
     sep += std::max(0.0, p.z - h);
     pen = std::max(pen, h - p.z);
   }
   if (load.face_maps) {
-    const std::size_t nfx = std::size_t(s.nx + 1), nf = nfx * std::size_t(s.ny + 1);
+    const std::size_t nfx = std::size_t(fnx + 1), nf = nfx * std::size_t(fny + 1);
     std::vector<double> local(3 * nf, 0.0);
     for (std::size_t n = 0; n < face.size(); ++n) {
       const FaceNode& f = face[n];
       const std::size_t idx = std::size_t(f.j) * nfx + std::size_t(f.i);
       // Nodal area: a quarter cell per adjacent cell.
-      const double wx = (f.i == 0 || f.i == s.nx) ? 0.5 : 1.0, wy = (f.j == 0 || f.j == s.ny) ? 0.5 : 1.0;
-      local[idx] = normal_force[n] / (wx * wy * m.hx() * m.hy());
-      const Vec3 p{f.x0.x + uu[f.row[0] - m.rstart], f.x0.y + uu[f.row[1] - m.rstart], uu[f.row[2] - m.rstart]};
+      const double wx = (f.i == 0 || f.i == fnx) ? 0.5 : 1.0, wy = (f.j == 0 || f.j == fny) ? 0.5 : 1.0;
+      local[idx] = normal_force[n] / (wx * wy * g.hx(0) * g.hy(0));
+      const Vec3 p{f.x0.x + uu[f.row[0] - rstart], f.x0.y + uu[f.row[1] - rstart], uu[f.row[2] - rstart]};
       local[nf + idx] = p.z - (load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0);
       local[2 * nf + idx] = m.active[n] ? 1.0 : 0.0;
     }
@@ -513,7 +690,6 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   VecDestroy(&r);
   VecDestroy(&diag);
   VecDestroy(&ustar);
-  VecDestroy(&ulocal);
   return out;
 }
 

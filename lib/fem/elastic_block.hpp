@@ -1,7 +1,8 @@
 #pragma once
-// A linear-elastic block on a rigid periodic obstacle: Q1 hexahedra on a PETSc DMDA
-// (MPI-partitioned), graded towards the contact face z = 0; frictionless, non-adhesive contact
-// at the bottom face.
+// A linear-elastic block on a rigid periodic obstacle: trilinear bricks on a mesh graded
+// towards the contact face z = 0 in depth and in-plane (lib/fem/graded_mesh.hpp, hanging
+// nodes constrained), assembled into a PETSc matrix partitioned in x-slabs over the MPI ranks;
+// frictionless, non-adhesive contact at the bottom face.
 //
 // Each contact solve is the thesis's iterative Signorini problem (sec. 4.2, Algorithm 1):
 // at the current configuration every bottom node casts a ray along its (deformed) outward
@@ -19,14 +20,13 @@
 #include <vector>
 
 #include "lib/contact/periodic_obstacle.hpp"
+#include "lib/fem/graded_mesh.hpp"
 
 namespace wr {
 
 struct BlockSpec {
-  double lx = 0.03, ly = 0.03, lz = 0.03;  // m
-  int nx = 16, ny = 16, nz = 8;             // elements
-  double grading = 1.0;                     // z_k = lz (k / nz)^grading; > 1 refines towards z = 0
-  double young = 1.0;                       // E, Pa
+  GradedMeshSpec mesh;     // sizes (m), face cells, grading
+  double young = 1.0;      // E, Pa
   double poisson = 0.45;
 };
 
@@ -40,12 +40,20 @@ struct ContactLoad {
   const PeriodicObstacle* obstacle = nullptr;
   bool follow_geometry = true;   // Algorithm 1 (rays, rotated normals); false: one solve, u_z >= h
   double damping = 0.8;          // alpha_c
+  bool facet_normals = false;     // constraint normal: the hit triangle's (true) or the smooth blend
   double tolerance = 1e-5;       // relative change of the contact-face displacement
   int max_outer_iterations = 300;
-  double ksp_rtol = 1e-7;
+  double ksp_rtol = 1e-7;         // CG tolerance of the final linearisations
+  bool inexact = true;            // early linearisations solved loosely (rtol ~ 0.01 x the change)
   int max_active_set_iterations = 60;
+  // PDAS iterations allowed in a Signorini iteration before the last (the active set then goes
+  // on settling across outer iterations; 35 % faster per iteration). Off by default: on a
+  // non-convex obstacle it can steer the iteration to another equilibrium (the ratchet test's
+  // mirror images then differ by 25 %).
+  int early_active_set_iterations = 60;
   bool reuse_preconditioner = true;  // keep one AMG hierarchy per load step (rebuilt if CG slows)
   bool face_maps = false;            // gather the contact-face maps below on rank 0
+  bool trace = false;                // rank 0 prints one line per Signorini iteration (stderr)
 };
 
 struct ContactSolution {
@@ -60,6 +68,7 @@ struct ContactSolution {
   std::string message;
   std::vector<double> history;    // relative change of the face displacement per outer iteration
   double final_damping = 0;       // alpha_c at the end (halved while the iteration stagnated)
+  double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, summed over the iterations
   // Contact-face maps, (nx+1) x (ny+1) row-major (rows = y), on rank 0 when requested:
   std::vector<double> face_pressure;  // Pa, normal contact force / nodal area
   std::vector<double> face_gap;       // m, vertical gap between the deformed face and the obstacle
@@ -76,10 +85,11 @@ class ElasticBlock {
   ElasticBlock& operator=(const ElasticBlock&) = delete;
 
   ContactSolution solve(const ContactLoad& load);
-  // The deformed block (displacement field on the graded grid) as a VTK structured grid
-  // (.vts, ParaView), written through PETSc's VTK viewer.
-  void write_vts(const std::string& path) const;
-  std::size_t nodes() const;
+  // The deformed block as a VTK unstructured grid (.vtu, ParaView; hexahedra, point data
+  // "displacement" in m, hanging nodes interpolated). Collective; rank 0 writes `path`.
+  void write_vtu(const std::string& path) const;
+  std::size_t nodes() const;  // independent nodes
+  const GradedMesh& mesh() const;
   std::size_t dofs() const { return 3 * nodes(); }
 
  private:

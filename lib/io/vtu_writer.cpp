@@ -1,0 +1,53 @@
+#include "lib/io/vtu_writer.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+namespace wr {
+namespace {
+
+struct Block {
+  const void* data;
+  std::uint64_t bytes;
+};
+
+}  // namespace
+
+void write_vtu_file(const std::string& path, const std::vector<double>& points,
+                    const std::vector<double>& point_vectors, const std::vector<std::int64_t>& connectivity,
+                    const std::vector<std::int64_t>& offsets, const std::vector<std::uint8_t>& types,
+                    const std::string& vector_name) {
+  const Block blocks[5] = {{points.data(), points.size() * sizeof(double)},
+                           {point_vectors.data(), point_vectors.size() * sizeof(double)},
+                           {connectivity.data(), connectivity.size() * sizeof(std::int64_t)},
+                           {offsets.data(), offsets.size() * sizeof(std::int64_t)},
+                           {types.data(), types.size()}};
+  std::uint64_t at[5], pos = 0;
+  for (int k = 0; k < 5; ++k) {
+    at[k] = pos;
+    pos += sizeof(std::uint64_t) + blocks[k].bytes;
+  }
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  f << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+    << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << points.size() / 3 << "\" NumberOfCells=\"" << types.size()
+    << "\">\n"
+    << "<PointData Vectors=\"" << vector_name << "\">\n"
+    << "<DataArray type=\"Float64\" Name=\"" << vector_name
+    << "\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << at[1] << "\"/>\n</PointData>\n"
+    << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << at[0]
+    << "\"/>\n</Points>\n<Cells>\n"
+    << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"" << at[2] << "\"/>\n"
+    << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"" << at[3] << "\"/>\n"
+    << "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"" << at[4] << "\"/>\n"
+    << "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  for (const Block& b : blocks) {
+    f.write(reinterpret_cast<const char*>(&b.bytes), sizeof b.bytes);
+    f.write(static_cast<const char*>(b.data), std::streamsize(b.bytes));
+  }
+  f << "\n</AppendedData>\n</VTKFile>\n";
+  if (!f) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace wr
