@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "lib/analytic/hertz.hpp"
 #include "lib/analytic/nayak_summits.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/fem/elastic_block.hpp"
@@ -236,7 +237,7 @@ nlohmann::json water_limit_coverage(int seeds) {
   return rows;
 }
 
-nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
+nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz, int layers_per_level, int rank) {
   const double L = 0.02, young = 1.0, nu = 0.45, e_star = young / (1 - nu * nu);
   // The cap on a fine lattice (the triangulated paraboloid deviates from the true one by
   // dx^2 / (8 R), negligible against the indentation).
@@ -253,6 +254,7 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
     BlockSpec b;
     b.mesh.lx = b.mesh.ly = b.mesh.lz = L;
     b.mesh.nx = b.mesh.ny = n;
+    b.mesh.layers_per_level = layers_per_level;
     b.young = young;
     b.poisson = nu;
     const double t0 = now();
@@ -266,23 +268,9 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
     const ContactSolution s = block.solve(load);
     const double h = L / n;
     const double a_num = std::sqrt(double(s.contact_nodes) * h * h / M_PI);
-    const double a_hertz = std::cbrt(3 * s.fz * radius / (4 * e_star));
-    // Hertz's pressure p = p0 sqrt(1 - r^2/a^2): p^2 is linear in r^2, so a least-squares line
-    // through the interior contact nodes (p > 0, away from the rim) gives a and p0 smoothly.
-    double sx = 0, sy = 0, sxx = 0, sxy = 0, cnt = 0;
-    for (int j = 0; j <= n && !s.face_pressure.empty(); ++j)
-      for (int i = 0; i <= n; ++i) {
-        const double p = s.face_pressure[std::size_t(j) * (n + 1) + i];
-        const double r2 = std::pow(i * h - L / 2, 2) + std::pow(j * h - L / 2, 2);
-        if (p <= 0 || r2 > 0.8 * a_num * a_num) continue;
-        sx += r2;
-        sy += p * p;
-        sxx += r2 * r2;
-        sxy += r2 * p * p;
-        cnt += 1;
-      }
-    const double slope = (cnt * sxy - sx * sy) / (cnt * sxx - sx * sx), icpt = (sy - slope * sx) / cnt;
-    const double a_fit = std::sqrt(-icpt / slope), p0_fit = std::sqrt(icpt);
+    const double a_hertz = hertz_radius(s.fz, radius, e_star);
+    const HertzFit fit = fit_hertz_pressure(s.face_pressure, n + 1, n + 1, h, L / 2, L / 2, a_num);
+    const double a_fit = fit.radius, p0_fit = fit.peak_pressure;
     const double p0_hertz = 3 * s.fz / (2 * M_PI * a_hertz * a_hertz);
     rows.push_back({{"n", n},
                     {"h", h},
@@ -297,10 +285,11 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz) {
                     {"p0_hertz", p0_hertz},
                     {"fit_radius_error", a_fit / a_hertz - 1},
                     {"fit_p0_error", p0_fit / p0_hertz - 1},
-                    {"force_error", s.fz / (4 * e_star * a_num * a_num * a_num / (3 * radius)) - 1},
+                    {"force_error", s.fz / hertz_force(a_fit, radius, e_star) - 1},
+                    {"count_force_error", s.fz / hertz_force(a_num, radius, e_star) - 1},
                     {"converged", s.converged},
                     {"wall_s", now() - t0}});
-    std::fprintf(stderr, "  mesh %d done (%.1f s)\n", n, now() - t0);
+    if (rank == 0) std::fprintf(stderr, "  mesh %d done (%.1f s)\n", n, now() - t0);
   }
   return rows;
 }

@@ -28,7 +28,9 @@ nlohmann::json water_limit_coverage(int seeds);
 // Hertz validation of the FEM contact solver (PETSc must be initialised): a paraboloid
 // obstacle (radius R) pressed into an elastic block on meshes of n x n elements per face;
 // compares the contact radius with Hertz's for the computed force, a = (3 F R / (4 E*))^(1/3),
-// and reports the observed convergence order.
-nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz);
+// and reports the observed convergence order. `layers_per_level` grades the bulk (graded_mesh.hpp):
+// with 2 the spacing at depth z is about z/2 whatever n, so the bulk field does not refine with n.
+// Progress lines go to stderr on `rank` 0 only.
+nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz, int layers_per_level, int rank);
 
 }  // namespace wr::bench

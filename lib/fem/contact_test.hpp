@@ -28,8 +28,8 @@ struct ContactTestOptions {
   double damping = 0.8, tolerance = 1e-5;
   int max_iterations = 300;  // Signorini iterations per step
   bool face_maps = false;    // keep contact-face maps per step (rank 0)
-  bool trace = false;
-  bool facet_normals = false;  // constraint normals of the hit triangles instead of the smooth blend        // print every Signorini iteration (rank 0, stderr)
+  bool trace = false;        // print every Signorini iteration (rank 0, stderr)
+  bool facet_normals = false;  // constraint normals of the hit triangles instead of the smooth blend
   std::string vtu_path;      // write the deformed block of the last step (.vtu), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
 };
