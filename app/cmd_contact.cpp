@@ -23,6 +23,7 @@ struct ContactCli {
   std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu;
   ContactTestOptions opt;
   int steps = 4;
+  int shear_steps = 0;  // 0: as --steps
   bool quiet = false, vertical = false;
 };
 
@@ -54,10 +55,12 @@ int run_contact(ContactCli c) {
   if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
   c.opt.shear = c.problem == "shear";
   if (c.opt.shear && c.opt.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
-  c.opt.normal_steps = c.opt.shear_steps = c.steps;
+  c.opt.normal_steps = c.steps;
+  c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
   c.opt.follow_geometry = !c.vertical;
   c.opt.rms_slope = rms_slope_finite_difference(s.map);
   c.opt.face_maps = !c.out.empty();
+  c.opt.progress_every_s = c.quiet ? 0 : 10;
   std::string vtu_tmp;
   if (!c.vtu.empty()) c.opt.vtu_path = vtu_tmp = temporary_sibling(c.vtu) + ".vtu";
 
@@ -79,6 +82,7 @@ int run_contact(ContactCli c) {
   if (talk)
     std::printf("  %4s %10s %10s %11s %11s %8s %8s %9s %10s %10s %5s %6s %8s\n", "step", "uz [m]", "ux [m]", "Fz [N]",
                 "Fx [N]", "mu", "A/A0", "sigma*", "sep [m]", "pen [m]", "sig", "lin", "wall [s]");
+  std::fflush(stdout);
   int k = 0;
   const ContactTestResult r = run_contact_test(s.map, c.opt, [&](const ContactStep& st) {
     ++k;
@@ -94,10 +98,10 @@ int run_contact(ContactCli c) {
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
-  prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps},
+  prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"tolerance", c.opt.tolerance},
+                     {"damping", c.opt.damping}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol},
                      {"follow_geometry", c.opt.follow_geometry}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
@@ -187,6 +191,7 @@ Command add_contact(CLI::App& root) {
   s->add_option("--uz", c->opt.uz, "final downward displacement of the top face, m")->required();
   s->add_option("--ux", c->opt.ux, "final tangential displacement of the top face (shear), m");
   s->add_option("--steps", c->steps, "load steps per phase")->capture_default_str();
+  s->add_option("--shear-steps", c->shear_steps, "load steps of the shear phase (default: --steps)");
   s->add_option("--refine", c->opt.refine, "contact-face spacing = surface spacing / refine")->capture_default_str();
   s->add_option("--height", c->opt.height, "block height in m (default: the period, a cube)");
   s->add_option("--layers", c->opt.layers_per_level, "brick layers at each in-plane spacing")->capture_default_str();
@@ -195,6 +200,8 @@ Command add_contact(CLI::App& root) {
   s->add_option("--E", c->opt.young, "Young's modulus, Pa (forces scale with it)")->capture_default_str();
   s->add_option("--nu", c->opt.poisson, "Poisson's ratio")->capture_default_str();
   s->add_option("--damping", c->opt.damping, "Signorini correction damping alpha_c")->capture_default_str();
+  s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
+      ->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step")
       ->capture_default_str();
   s->add_option("--max-iterations", c->opt.max_iterations, "Signorini iterations allowed per step")

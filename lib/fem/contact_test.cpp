@@ -58,9 +58,11 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.follow_geometry = opt.follow_geometry;
   load.damping = opt.damping;
   load.tolerance = opt.tolerance;
+  load.ksp_rtol = opt.ksp_rtol;
   load.max_outer_iterations = opt.max_iterations;
   load.face_maps = opt.face_maps;
   load.trace = opt.trace;
+  load.progress_every_s = opt.progress_every_s;
   load.facet_normals = opt.facet_normals;
   res.face_nx = std::size_t(b.mesh.nx + 1);
   res.face_ny = std::size_t(b.mesh.ny + 1);

@@ -26,9 +26,11 @@ struct ContactTestOptions {
   double young = 1.0, poisson = 0.45;
   bool follow_geometry = true;
   double damping = 0.8, tolerance = 1e-5;
+  double ksp_rtol = 1e-7;   // CG relative tolerance of the final linearisation of a step
   int max_iterations = 300;  // Signorini iterations per step
   bool face_maps = false;    // keep contact-face maps per step (rank 0)
   bool trace = false;        // print every Signorini iteration (rank 0, stderr)
+  double progress_every_s = 0;  // > 0: a progress line at most this often within a step (rank 0)
   bool facet_normals = false;  // constraint normals of the hit triangles instead of the smooth blend
   std::string vtu_path;      // write the deformed block of the last step (.vtu), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0

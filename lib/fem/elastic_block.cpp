@@ -473,6 +473,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   std::vector<double> prev_corr(3 * face.size(), 0.0);
   bool final_pass = false;
   const double t_solve_start = MPI_Wtime();
+  double last_progress = t_solve_start;
   for (int outer = 0; outer < outer_max; ++outer) {
     out.outer_iterations = outer + 1;
     // 1. Linearise the contact at the current configuration.
@@ -572,12 +573,27 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       check(VecSet(b, 0.0), "VecSet");
       check(MatZeroRowsColumns(A, PetscInt(rows.size()), rows.data(), unit_diag, uh, b), "MatZeroRowsColumns");
       check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+      check(VecCopy(uh, ustar), "VecCopy");  // the start, in case the solve must be redone
       check(KSPSolve(ksp, b, uh), "KSPSolve");
       KSPConvergedReason reason;
       PetscInt its;
       KSPGetConvergedReason(ksp, &reason);
       KSPGetIterationNumber(ksp, &its);
       out.linear_iterations += int(its);
+      PetscBool reused = PETSC_FALSE;
+      KSPGetReusePreconditioner(ksp, &reused);
+      if (reason < 0 && reused) {
+        // A hierarchy kept from an earlier system can stop being a good (or even positive
+        // definite, with its Chebyshev bounds) preconditioner for this one: rebuild and redo.
+        check(KSPSetReusePreconditioner(ksp, PETSC_FALSE), "KSPSetReusePreconditioner");
+        check(VecCopy(ustar, uh), "VecCopy");
+        check(KSPSolve(ksp, b, uh), "KSPSolve");
+        KSPGetConvergedReason(ksp, &reason);
+        KSPGetIterationNumber(ksp, &its);
+        out.linear_iterations += int(its);
+        first_its = int(its);
+        ++out.preconditioner_rebuilds;
+      }
       // Keep the AMG hierarchy of the first system for the later ones of this load step (the
       // systems differ only by rotations and eliminated rows); rebuild it when CG slows down.
       if (load.reuse_preconditioner) {
@@ -687,6 +703,12 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
                    "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  [%.1f s]\n",
                    outer + 1, change, alpha, out.contact_nodes, settled ? "" : "+", out.active_set_iterations,
                    out.linear_iterations, rtol, trace_fz, trace_fx, MPI_Wtime() - t_solve_start);
+    if (!load.trace && load.progress_every_s > 0 && m.rank == 0 &&
+        MPI_Wtime() - last_progress >= load.progress_every_s) {
+      last_progress = MPI_Wtime();
+      std::fprintf(stderr, "    ... Signorini iteration %d: change %.2e (tolerance %.1e), %zu nodes in contact, %.0f s\n",
+                   outer + 1, change, load.tolerance, out.contact_nodes, last_progress - t_solve_start);
+    }
     out.final_damping = alpha;
     if (change <= load.tolerance && (rtol > load.ksp_rtol || !settled) && !final_pass) {
       final_pass = true;  // converged on loose solves: confirm with one full solve at ksp_rtol

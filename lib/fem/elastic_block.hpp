@@ -54,6 +54,7 @@ struct ContactLoad {
   bool reuse_preconditioner = true;  // keep one AMG hierarchy per load step (rebuilt if CG slows)
   bool face_maps = false;            // gather the contact-face maps below on rank 0
   bool trace = false;                // rank 0 prints one line per Signorini iteration (stderr)
+  double progress_every_s = 0;       // > 0: rank 0 prints a progress line at most this often (stderr)
 };
 
 struct ContactSolution {
@@ -64,6 +65,7 @@ struct ContactSolution {
   int outer_iterations = 0;       // Signorini (geometry) iterations
   int active_set_iterations = 0;  // PDAS iterations, summed
   int linear_iterations = 0;      // CG iterations, summed
+  int preconditioner_rebuilds = 0;  // AMG hierarchies rebuilt after a failed solve with a kept one
   bool converged = false;
   std::string message;
   std::vector<double> history;    // relative change of the face displacement per outer iteration
