@@ -59,6 +59,8 @@ int run_contact(ContactCli c) {
   c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
   c.opt.follow_geometry = !c.vertical;
   c.opt.rms_slope = rms_slope_finite_difference(s.map);
+  if (c.opt.max_penetration == 0) c.opt.max_penetration = 0.1 * height_stats(s.map).sq;
+  if (c.opt.max_penetration < 0) c.opt.max_penetration = 0;  // no check
   c.opt.face_maps = !c.out.empty();
   c.opt.progress_every_s = c.quiet ? 0 : 10;
   std::string vtu_tmp;
@@ -101,7 +103,7 @@ int run_contact(ContactCli c) {
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol},
+                     {"damping", c.opt.damping}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
                      {"follow_geometry", c.opt.follow_geometry}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
@@ -200,6 +202,9 @@ Command add_contact(CLI::App& root) {
   s->add_option("--E", c->opt.young, "Young's modulus, Pa (forces scale with it)")->capture_default_str();
   s->add_option("--nu", c->opt.poisson, "Poisson's ratio")->capture_default_str();
   s->add_option("--damping", c->opt.damping, "Signorini correction damping alpha_c")->capture_default_str();
+  s->add_option("--max-penetration", c->opt.max_penetration,
+                 "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "
+                 "negative: no check)");
   s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
       ->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step")

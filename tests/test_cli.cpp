@@ -229,6 +229,11 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   std::ifstream g(j);
   const auto jf = nlohmann::json::parse(g);
   EXPECT_EQ(jf["status"], "failed");
+  // A step that meets --tol but leaves a node deeper in the obstacle than --max-penetration
+  // is a failure too, never a number.
+  r = run("contact --surface " + s + " --problem normal --uz 1e-4 --steps 1 --refine 1 --tol 0.5 --max-penetration 1e-15 --json " + j);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("penetration"), std::string::npos) << r.err;
   r = run("contact --surface " + path("nope.h5") + " --uz 1e-4");
   EXPECT_EQ(r.code, 2);
 }

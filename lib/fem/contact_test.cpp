@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "lib/core/errors.hpp"
@@ -94,13 +95,22 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.wall_solve = s.wall_solve;
     st.converged = s.converged;
     st.message = s.message;
+    if (s.converged && opt.max_penetration > 0 && s.max_penetration > opt.max_penetration) {
+      // Converged by the change criterion, yet a node sits visibly inside the obstacle: the
+      // tolerance was too loose for this scene. Never report that as a result.
+      st.converged = false;
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "penetration %.3g m left, above the allowed %.3g m (--max-penetration); tighten --tol",
+                    s.max_penetration, opt.max_penetration);
+      st.message = buf;
+    }
     st.history = std::move(s.history);
     st.face_pressure = std::move(s.face_pressure);  // maps can be large: move, do not copy
     st.face_gap = std::move(s.face_gap);
     st.face_status = std::move(s.face_status);
     res.steps.push_back(st);
     if (on_step) on_step(st);
-    if (!s.converged) {
+    if (!st.converged) {
       res.failed = true;
       break;
     }

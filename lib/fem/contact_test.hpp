@@ -27,6 +27,7 @@ struct ContactTestOptions {
   bool follow_geometry = true;
   double damping = 0.8, tolerance = 1e-5;
   double ksp_rtol = 1e-7;   // CG relative tolerance of the final linearisation of a step
+  double max_penetration = 0;  // m; > 0: a converged step leaving a deeper penetration fails
   int max_iterations = 300;  // Signorini iterations per step
   bool face_maps = false;    // keep contact-face maps per step (rank 0)
   bool trace = false;        // print every Signorini iteration (rank 0, stderr)
