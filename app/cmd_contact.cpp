@@ -132,6 +132,8 @@ int run_contact(ContactCli c) {
                       {"status", r.failed ? "failed" : "ok"},
                       {"steps", steps},
                       {"provenance", prov.to_json()}};
+  const ContactStep* peak = peak_friction(r);
+  if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
   if (rank == 0 && !c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
   if (rank == 0 && !c.out.empty()) {
     Hdf5Writer w(c.out);
@@ -165,6 +167,9 @@ int run_contact(ContactCli c) {
   if (talk) {
     std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s)\n",
                 r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks);
+    if (peak)
+      std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
+                  peak->ux, int(peak - r.steps.data()) + 1);
     std::printf("  timing [s]: setup %.2f  linearise %.2f  rotate %.2f  solve %.2f  total %.2f\n", r.wall_setup,
                 t_lin, t_rot, t_sol, r.wall_s);
   }

@@ -221,6 +221,9 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
                           "max_penetration", "signorini_iterations", "linear_iterations", "wall_s"})
     EXPECT_TRUE(js["steps"][1].contains(key)) << key;
   EXPECT_GT(js["steps"][0]["fz"].get<double>(), 0.0);
+  ASSERT_TRUE(js.contains("peak"));  // one shear step: it is the peak
+  EXPECT_EQ(js["peak"]["step"].get<int>(), 2);
+  EXPECT_DOUBLE_EQ(js["peak"]["mu"].get<double>(), js["steps"][1]["mu"].get<double>());
   // Failure is never a number: an iteration cap that cannot be met ends with exit code 3, the
   // residual history, and the finished steps labelled.
   r = run("contact --surface " + s + " --problem normal --uz 1e-4 --steps 2 --refine 1 --tol 1e-30 --max-iterations 3 --json " + j);
