@@ -481,6 +481,8 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   const double reach = std::max(m.spec.mesh.lz, 1e-12);  // rays look this far for the obstacle
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
   double alpha_now = load.damping;
+  double alpha_cap = load.damping;  // lowered while the iteration stagnates (chattering nodes)
+  int last_cap_cut = 0;
   std::vector<double> normal_force(face.size(), 0.0);  // N, per face node, last linearisation
   int first_its = -1;  // CG iterations with a fresh preconditioner
   std::vector<double> prev_corr(3 * face.size(), 0.0);
@@ -703,14 +705,31 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       if (cosine < -0.3)
         alpha_now = std::max(0.5 * alpha_now, 0.01);
       else if (cosine > 0.7)
-        alpha_now = std::min(1.5 * alpha_now, load.damping);
+        alpha_now = std::min(1.5 * alpha_now, alpha_cap);
+    }
+    // Stagnation: nodes on kinks of the obstacle can chatter for ever (the linearised map is
+    // discontinuous there), the change then stalls. Halve the damping ceiling each time the best
+    // change of the last `window` iterations is not half the best of the window before: the
+    // iterates then average the chatter out (a Krasnoselskii-Mann step), and convergence is
+    // judged on the capped step alpha_cap x change. The penetration check of the caller guards
+    // against stopping on a small alpha alone.
+    out.history.push_back(change);
+    const int window = 15, k = int(out.history.size());
+    if (load.follow_geometry && k >= 2 * window && k - last_cap_cut >= 2 * window) {
+      const auto h = out.history.end();
+      const double recent = *std::min_element(h - window, h), before = *std::min_element(h - 2 * window, h - window);
+      if (recent > 0.5 * before && alpha_cap > 0.05) {
+        alpha_cap = std::max(0.5 * alpha_cap, 0.05);
+        alpha_now = std::min(alpha_now, alpha_cap);
+        last_cap_cut = k;
+      }
     }
     const double alpha = load.follow_geometry ? alpha_now : 1.0;
+    const double step_change = alpha_cap < load.damping ? alpha_cap * change : change;
     VecRestoreArrayRead(ustar, &us);
     VecRestoreArray(m.u, &uc);
     check(VecScale(m.u, 1 - alpha), "VecScale");
     check(VecAXPY(m.u, alpha, ustar), "VecAXPY");
-    out.history.push_back(change);
     const double trace_fz = load.trace ? top_force(ustar, 2) : 0, trace_fx = load.trace ? top_force(ustar, 0) : 0;
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
@@ -720,22 +739,24 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     if (!load.trace && load.progress_every_s > 0 && m.rank == 0 &&
         MPI_Wtime() - last_progress >= load.progress_every_s) {
       last_progress = MPI_Wtime();
-      std::fprintf(stderr, "    ... Signorini iteration %d: change %.2e (tolerance %.1e), %zu nodes in contact, %.0f s\n",
-                   outer + 1, change, load.tolerance, out.contact_nodes, last_progress - t_solve_start);
+      std::fprintf(stderr, "    ... Signorini iteration %d: change %.2e (tolerance %.1e, damping %.2f), %zu nodes in contact, %.0f s\n",
+                   outer + 1, step_change, load.tolerance, alpha, out.contact_nodes, last_progress - t_solve_start);
     }
     out.final_damping = alpha;
-    if (final_pass && change > load.tolerance) {
+    if (final_pass && step_change > load.tolerance) {
       // Not confirmed: the loose solves were too loose to see the change that is left. Go on
       // loosely, ten times tighter.
       final_pass = false;
       loose_factor *= 0.1;
     }
-    if (change <= load.tolerance && (rtol > load.ksp_rtol || !settled) && !final_pass) {
+    if (step_change <= load.tolerance && (rtol > load.ksp_rtol || !settled) && !final_pass) {
       final_pass = true;  // converged on loose solves: confirm with one full solve at ksp_rtol
       continue;
     }
-    if (!load.follow_geometry || change <= load.tolerance) {
-      check(VecCopy(ustar, m.u), "VecCopy");  // the undamped solution of the last linearisation
+    if (!load.follow_geometry || step_change <= load.tolerance) {
+      // The undamped solution of the last linearisation; after a stagnation the averaged
+      // iterate instead (u* still carries the chatter).
+      if (alpha_cap >= load.damping) check(VecCopy(ustar, m.u), "VecCopy");
       out.converged = true;
       break;
     }
