@@ -29,6 +29,7 @@ bench: build
 validate: build
 	$(BUILD_DIR)/bin/wetroad bench summits --realizations 100
 	$(BUILD_DIR)/bin/wetroad bench coverage --seeds 10
+	OMP_NUM_THREADS=1 $(BUILD_DIR)/bin/wetroad bench hertz --meshes 32 64 128
 
 clean:
 	rm -rf $(BUILD_DIR)
