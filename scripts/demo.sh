@@ -1,7 +1,9 @@
 #!/bin/sh
 # The main job on the built-in default scene: synthesize the default asphalt-like surface
 # (share/scenes/default-asphalt.json), analyze it, and fill it with rain water (30% coverage and
-# the drained limit). Outputs land in build/demo/.
+# the drained limit); then a shear test of an elastic block on a small gentle patch (4 mm, 40 x 40:
+# the FEM on the full 300 x 300 default surface is a long job, see README "contact").
+# Outputs land in build/demo/.
 set -eu
 BIN=${BIN:-build/bin/wetroad}
 OUT=${OUT:-build/demo}
@@ -14,5 +16,10 @@ echo
 echo
 "$BIN" fill "$OUT/surface.h5" --limit -o "$OUT/wet-limit.h5" --json "$OUT/wet-limit.json"
 echo
+"$BIN" synth --size 40 --dx 1e-4 --h0 5e-5 --hurst 0.7 --q0-ratio 2 --seed 3 -o "$OUT/patch.h5" -q
+OMP_NUM_THREADS=1 "$BIN" contact --surface "$OUT/patch.h5" --problem shear --uz 1.2e-3 --ux 8e-4 --steps 2 --refine 1 \
+  --tol 1e-3 --json "$OUT/contact.json" --out "$OUT/contact.h5" --vtu "$OUT/contact.vtu"
+echo
 echo "demo outputs in $OUT: surface.h5 (height map), analysis.json/.h5 (texture summary + PSD),"
-echo "  wet-30.h5 (30% water coverage), wet-limit.h5 (drained limit); 'wetroad analyze' reads the wet surfaces too"
+echo "  wet-30.h5 (30% water coverage), wet-limit.h5 (drained limit); 'wetroad analyze' reads the wet surfaces too;"
+echo "  contact.json/.h5/.vtu (shear test of a block on patch.h5: forces, mu, contact maps, deformed block)"
