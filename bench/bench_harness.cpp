@@ -241,14 +241,7 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz, i
   const double L = 0.02, young = 1.0, nu = 0.45, e_star = young / (1 - nu * nu);
   // The cap on a fine lattice (the triangulated paraboloid deviates from the true one by
   // dx^2 / (8 R), negligible against the indentation).
-  const std::size_t nlat = 512;
-  HeightMap cap(nlat, nlat, L / nlat, L / nlat);
-  for (std::size_t j = 0; j < nlat; ++j)
-    for (std::size_t i = 0; i < nlat; ++i) {
-      const double x = i * L / nlat - L / 2, y = j * L / nlat - L / 2;
-      cap(i, j) = -(x * x + y * y) / (2 * radius);
-    }
-  const PeriodicObstacle obstacle(cap);
+  const PeriodicObstacle obstacle(paraboloid_cap(512, L, radius));
   nlohmann::json rows = nlohmann::json::array();
   for (int n : meshes) {
     BlockSpec b;

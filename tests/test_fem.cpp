@@ -46,24 +46,12 @@ TEST(Fem, UniaxialCompressionOnAFlatObstacle) {
   }
 }
 
-// A paraboloid cap (radius of curvature 5 cm) at the centre of the period, shifted so that
-// its top touches z = 0.
-HeightMap cap_map(std::size_t n, double L) {
-  HeightMap m(n, n, L / n, L / n);
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x = i * L / n - L / 2, y = j * L / n - L / 2;
-      m(i, j) = -(x * x + y * y) / (2 * 0.05);
-    }
-  return m;
-}
-
 // Partial contact: no node penetrates, and pressing harder presses more area; following the
 // geometry (rays, rotated normals) and the vertical linearisation agree for this gentle cap.
 TEST(Fem, PartialContactOnACapIsAdmissible) {
   BlockSpec b;
   b.mesh.nx = b.mesh.ny = 12;
-  const PeriodicObstacle cap(cap_map(48, 0.03));
+  const PeriodicObstacle cap(paraboloid_cap(48, 0.03, 0.05));  // R = 5 cm, apex at the centre
   for (bool follow : {false, true}) {
     ElasticBlock block(b);
     ContactLoad load;
@@ -143,14 +131,7 @@ TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
 // The block's finite size (a / L = 1/8) is part of that error budget.
 TEST(Fem, ParaboloidMatchesHertz) {
   const double L = 0.02, R = 0.1, nu = 0.45;
-  const std::size_t nlat = 256;
-  HeightMap cap(nlat, nlat, L / nlat, L / nlat);
-  for (std::size_t j = 0; j < nlat; ++j)
-    for (std::size_t i = 0; i < nlat; ++i) {
-      const double x = i * L / nlat - L / 2, y = j * L / nlat - L / 2;
-      cap(i, j) = -(x * x + y * y) / (2 * R);
-    }
-  const PeriodicObstacle ob(cap);
+  const PeriodicObstacle ob(paraboloid_cap(256, L, R));
   BlockSpec b;
   b.mesh.lx = b.mesh.ly = b.mesh.lz = L;
   b.mesh.nx = b.mesh.ny = 64;

@@ -4,6 +4,17 @@
 
 namespace wr {
 
+HeightMap paraboloid_cap(std::size_t n, double period, double radius) {
+  const double dx = period / double(n);
+  HeightMap m(n, n, dx, dx);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = double(i) * period / double(n) - period / 2, y = double(j) * period / double(n) - period / 2;
+      m(i, j) = -(x * x + y * y) / (2 * radius);
+    }
+  return m;
+}
+
 double hertz_radius(double force, double radius, double e_star) { return std::cbrt(3 * force * radius / (4 * e_star)); }
 
 double hertz_force(double contact_radius, double radius, double e_star) {

@@ -2,9 +2,16 @@
 // Hertz's frictionless contact of a rigid paraboloid (radius of curvature R) on an elastic
 // half-space (Johnson, Contact Mechanics, sec. 4.2), and the fit that reads Hertz's two numbers
 // off a computed contact-pressure map. Units: m, N, Pa; E* = E / (1 - nu^2).
+#include <cstddef>
 #include <vector>
 
+#include "lib/core/height_map.hpp"
+
 namespace wr {
+
+// The obstacle of a Hertz test: an n x n periodic map of the given period (m) holding the cap
+// h = -r^2 / (2 R) about the period's centre, apex at h = 0.
+HeightMap paraboloid_cap(std::size_t n, double period, double radius);
 
 // Contact radius for a total force F: a = (3 F R / (4 E*))^(1/3).
 double hertz_radius(double force, double radius, double e_star);

@@ -15,17 +15,17 @@
 namespace wr {
 
 namespace {
-void set_default_option(const char* name, const char* value) {
-  PetscBool given = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, nullptr, name, &given);
-  if (!given) PetscOptionsSetValue(nullptr, name, value);
-}
-}  // namespace
-namespace {
 
 // PETSc calls return error codes; turn them into exceptions with the call's name.
 void check(PetscErrorCode ierr, const char* what) {
   if (ierr) throw std::runtime_error(std::string("PETSc failed in ") + what + " (code " + std::to_string(ierr) + ")");
+}
+
+// A solver default that a user's -option (command line, --petsc) overrides.
+void set_default_option(const char* name, const char* value) {
+  PetscBool given = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, name, &given);
+  if (!given) PetscOptionsSetValue(nullptr, name, value);
 }
 
 using ElementMatrix = std::array<double, 24 * 24>;
@@ -589,15 +589,15 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       check(VecSet(b, 0.0), "VecSet");
       check(MatZeroRowsColumns(A, PetscInt(rows.size()), rows.data(), unit_diag, uh, b), "MatZeroRowsColumns");
       check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
-      check(VecCopy(uh, ustar), "VecCopy");  // the start, in case the solve must be redone
+      PetscBool reused = PETSC_FALSE;
+      KSPGetReusePreconditioner(ksp, &reused);
+      if (reused) check(VecCopy(uh, ustar), "VecCopy");  // the start, in case the solve must be redone
       check(KSPSolve(ksp, b, uh), "KSPSolve");
       KSPConvergedReason reason;
       PetscInt its;
       KSPGetConvergedReason(ksp, &reason);
       KSPGetIterationNumber(ksp, &its);
       out.linear_iterations += int(its);
-      PetscBool reused = PETSC_FALSE;
-      KSPGetReusePreconditioner(ksp, &reused);
       if (reason < 0 && reused) {
         // A hierarchy kept from an earlier system can stop being a good (or even positive
         // definite, with its Chebyshev bounds) preconditioner for this one: rebuild and redo.
@@ -668,7 +668,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
 
     out.wall_solve += MPI_Wtime() - t_phase;
 
-    // 4. Next iterate: Anderson-mixed (or damped) step towards the linearised solution u*.
+    // 4. Next iterate: a damped step towards the linearised solution u*.
     check(VecCopy(uh, ustar), "VecCopy");
     m.rotate_vector(ustar, q_all, false);
     const PetscScalar* us;
