@@ -524,7 +524,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
         continue;
       }
       f.normal = load.facet_normals ? load.obstacle->normal(hit->point.x, hit->point.y) : hit->normal;
-      f.g = hit->normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q
+      f.g = f.normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q, N the constraint normal
     }
     VecRestoreArrayRead(m.face_u, &fu);
     out.wall_linearise += MPI_Wtime() - t_phase;
