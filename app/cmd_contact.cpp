@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "app/commands.hpp"
@@ -11,6 +12,8 @@
 #include "lib/core/provenance.hpp"
 #include "lib/fem/contact_test.hpp"
 #include "lib/fem/petsc_session.hpp"
+#include "lib/core/fft.hpp"
+#include "lib/spectral/spectral_contact_test.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/io/hdf5_file.hpp"
 #include "roads/height_stats.hpp"
@@ -24,6 +27,11 @@ struct ContactCli {
   ContactTestOptions opt;
   int steps = 4;
   int shear_steps = 0;  // 0: as --steps
+  double pressure = 0;  // Pa, spectral load control
+  std::string thickness;  // spectral layer thickness, m or "inf"; empty: the block height
+  double spectral_tol = 1e-8;
+  int threads = 0;
+  int max_iterations = 0;  // 0: the model's default
   bool quiet = false, vertical = false;
 };
 
@@ -48,11 +56,143 @@ nlohmann::json step_json(const ContactStep& s) {
           {"residual_history", s.history}};
 }
 
+// --thickness: metres or "inf" (half-space); empty gives `block_height`.
+double parse_thickness(const std::string& text, double block_height) {
+  if (text.empty()) return block_height;
+  if (text == "inf") return std::numeric_limits<double>::infinity();
+  std::size_t used = 0;
+  double t = 0;
+  try {
+    t = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(t > 0)) throw InputError("--thickness", "must be a length > 0 in m, or inf");
+  return t;
+}
+
+void print_step_header() {
+  std::printf("  %4s %10s %10s %11s %11s %8s %8s %9s %10s %10s %5s %6s %8s\n", "step", "uz [m]", "ux [m]", "Fz [N]",
+              "Fx [N]", "mu", "A/A0", "sigma*", "sep [m]", "pen [m]", "sig", "lin", "wall [s]");
+  std::fflush(stdout);
+}
+
+void print_step_row(int k, const ContactStep& st) {
+  std::printf("  %4d %10.4g %10.4g %11.4e %11.4e %8.4f %8.4f %9.4g %10.3e %10.2e %5d %6d %8.2f%s\n", k, st.uz, st.ux,
+              st.fz, st.fx, st.mu, st.area_fraction, st.sigma_star, st.separation, st.max_penetration,
+              st.signorini_iterations, st.linear_iterations, st.wall_s, st.converged ? "" : "  FAILED");
+  std::fflush(stdout);
+}
+
+// --json and --out (contact-face maps per step), each written atomically.
+void write_contact_files(const ContactCli& c, const nlohmann::json& summary, const std::vector<ContactStep>& steps,
+                         std::size_t face_nx, std::size_t face_ny, double face_spacing, const Provenance& prov) {
+  if (!c.json.empty()) write_text_atomically(c.json, summary.dump(2) + "\n");
+  if (c.out.empty()) return;
+  Hdf5Writer w(c.out);
+  w.create_group("/steps");
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const ContactStep& st = steps[k];
+    const std::string g = "/steps/" + std::to_string(k + 1);
+    w.create_group(g);
+    w.write_matrix(g + "/pressure", st.face_pressure.data(), face_ny, face_nx);
+    w.write_matrix(g + "/gap", st.face_gap.data(), face_ny, face_nx);
+    w.write_matrix(g + "/status", st.face_status.data(), face_ny, face_nx);
+    w.write_attr(g, "summary", step_json(st).dump());
+  }
+  w.write_attr("/", "face_spacing", face_spacing);
+  w.write_attr("/", "summary", summary.dump());
+  w.write_attr("/", "provenance", prov.to_json().dump());
+  w.commit();
+}
+
+// The failed step's reason and residual history on stderr; exit code 3.
+int report_failure(const ContactCli& c, const std::vector<ContactStep>& steps, const char* measure) {
+  const ContactStep& last = steps.back();
+  std::fprintf(stderr, "wetroad: error: contact step %zu did not converge: %s\n", steps.size(), last.message.c_str());
+  std::fprintf(stderr, "  %s:", measure);
+  for (double h : last.history) std::fprintf(stderr, " %.2e", h);
+  std::fprintf(stderr, "\n  the %zu finished steps are kept%s\n", steps.size() - 1,
+               c.json.empty() ? "" : (" in " + c.json + " (status \"failed\")").c_str());
+  return 3;
+}
+
+// The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.
+int run_spectral(const ContactCli& c, const LoadedSurface& s) {
+  if (c.problem == "shear")
+    throw InputError("--problem", "the spectral model has no shear test yet; use --model fem for Problem B");
+  SpectralTestOptions o;
+  o.uz = c.opt.uz;
+  o.pressure = c.pressure;
+  o.steps = c.steps;
+  o.body.young = c.opt.young;
+  o.body.poisson = c.opt.poisson;
+  o.body.thickness = parse_thickness(c.thickness, c.opt.height > 0 ? c.opt.height : s.map.lx());
+  o.solver.tolerance = c.spectral_tol;
+  if (c.max_iterations > 0) o.solver.max_iterations = c.max_iterations;
+  o.solver.threads = c.threads;
+  o.face_maps = !c.out.empty();
+  o.rms_slope = rms_slope_finite_difference(s.map);
+  check_spectral_test_options(o);
+  const bool talk = !c.quiet;
+  if (talk) {
+    std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g; spectral model, %s\n", s.source.c_str(), s.map.nx,
+                s.map.ny, s.map.dx, o.rms_slope,
+                o.body.half_space() ? "half-space" : "layer with its far face fixed");
+    if (!o.body.half_space()) std::printf("  layer thickness %.4g m\n", o.body.thickness);
+    print_step_header();
+  }
+  int k = 0;
+  const SpectralTestResult r = run_spectral_normal_test(s.map, o, [&](const ContactStep& st) {
+    if (talk) print_step_row(++k, st);
+  });
+  nlohmann::json steps = nlohmann::json::array();
+  for (const auto& st : r.steps) steps.push_back(step_json(st));
+  Provenance prov;
+  prov.command = "contact";
+  prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
+  prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"pressure", c.pressure}, {"steps", c.steps},
+                     {"E", c.opt.young}, {"nu", c.opt.poisson},
+                     {"thickness", o.body.half_space() ? nlohmann::json("inf") : nlohmann::json(o.body.thickness)},
+                     {"tolerance", o.solver.tolerance}, {"threads", c.threads}};
+  prov.model = "spectral: FFT boundary elements, periodic elastic " +
+               std::string(o.body.half_space() ? "half-space" : "layer with a fixed far face") +
+               ", Polonsky-Keer constrained CG";
+  double t_sol = 0;
+  for (const auto& st : r.steps) t_sol += st.wall_s;
+  prov.timings = {{"setup", r.wall_setup}, {"solve", t_sol}, {"total", r.wall_s}};
+  const nlohmann::json j = {{"model", "spectral"},
+                            {"grid_points", r.nx * r.ny},
+                            {"nodes", r.nx * r.ny},
+                            {"dofs", r.nx * r.ny},
+                            {"ranks", 1},
+                            {"threads", c.threads},
+                            {"thickness", o.body.half_space() ? nlohmann::json("inf") : nlohmann::json(o.body.thickness)},
+                            {"wall_s", r.wall_s},
+                            {"face_spacing", r.spacing},
+                            {"rms_slope", o.rms_slope},
+                            {"e_star", o.body.e_star()},
+                            {"status", r.failed ? "failed" : "ok"},
+                            {"steps", steps},
+                            {"provenance", prov.to_json()}};
+  write_contact_files(c, j, r.steps, r.nx, r.ny, r.spacing, prov);
+  if (r.failed) return report_failure(c, r.steps, "Polonsky-Keer error per iteration");
+  if (talk) {
+    std::printf("  %zu grid points, %d FFT thread(s)\n", r.nx * r.ny, c.threads > 0 ? c.threads : hardware_threads());
+    std::printf("  timing [s]: setup %.2f  solve %.2f  total %.2f\n", r.wall_setup, t_sol, r.wall_s);
+  }
+  return 0;
+}
+
 int run_contact(ContactCli c) {
-  if (c.model != "fem") throw InputError("--model", "only the fem model exists so far");
+  if (c.model != "fem" && c.model != "spectral") throw InputError("--model", "must be fem or spectral");
   if (c.problem != "normal" && c.problem != "shear") throw InputError("--problem", "must be normal or shear");
   const LoadedSurface s = load_surface(c.wet.empty() ? c.surface : c.wet);
   if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
+  if (c.model == "spectral") return run_spectral(c, s);
+  if (c.pressure > 0) throw InputError("--pressure", "the fem model is displacement-controlled; give --uz");
+  if (!(c.opt.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
+  if (c.max_iterations > 0) c.opt.max_iterations = c.max_iterations;
   c.opt.shear = c.problem == "shear";
   if (c.opt.shear && c.opt.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
   c.opt.normal_steps = c.steps;
@@ -81,19 +221,11 @@ int run_contact(ContactCli c) {
     std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g (triangulated); block %s, refine %d\n",
                 s.source.c_str(), s.map.nx, s.map.ny, s.map.dx, c.opt.rms_slope,
                 c.opt.height > 0 ? "custom height" : "cube", c.opt.refine);
-  if (talk)
-    std::printf("  %4s %10s %10s %11s %11s %8s %8s %9s %10s %10s %5s %6s %8s\n", "step", "uz [m]", "ux [m]", "Fz [N]",
-                "Fx [N]", "mu", "A/A0", "sigma*", "sep [m]", "pen [m]", "sig", "lin", "wall [s]");
-  std::fflush(stdout);
+  if (talk) print_step_header();
   int k = 0;
   const ContactTestResult r = run_contact_test(s.map, c.opt, [&](const ContactStep& st) {
     ++k;
-    if (talk) {
-      std::printf("  %4d %10.4g %10.4g %11.4e %11.4e %8.4f %8.4f %9.4g %10.3e %10.2e %5d %6d %8.2f%s\n", k, st.uz, st.ux,
-                  st.fz, st.fx, st.mu, st.area_fraction, st.sigma_star, st.separation, st.max_penetration,
-                  st.signorini_iterations, st.linear_iterations, st.wall_s, st.converged ? "" : "  FAILED");
-      std::fflush(stdout);
-    }
+    if (talk) print_step_row(k, st);
   });
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& st : r.steps) steps.push_back(step_json(st));
@@ -134,36 +266,9 @@ int run_contact(ContactCli c) {
                       {"provenance", prov.to_json()}};
   const ContactStep* peak = peak_friction(r);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
-  if (rank == 0 && !c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
-  if (rank == 0 && !c.out.empty()) {
-    Hdf5Writer w(c.out);
-    w.create_group("/steps");
-    for (std::size_t k = 0; k < r.steps.size(); ++k) {
-      const ContactStep& st = r.steps[k];
-      const std::string g = "/steps/" + std::to_string(k + 1);
-      w.create_group(g);
-      w.write_matrix(g + "/pressure", st.face_pressure.data(), r.face_ny, r.face_nx);
-      w.write_matrix(g + "/gap", st.face_gap.data(), r.face_ny, r.face_nx);
-      w.write_matrix(g + "/status", st.face_status.data(), r.face_ny, r.face_nx);
-      w.write_attr(g, "summary", step_json(st).dump());
-    }
-    w.write_attr("/", "face_spacing", r.face_spacing);
-    w.write_attr("/", "summary", j.dump());
-    w.write_attr("/", "provenance", prov.to_json().dump());
-    w.commit();
-  }
+  if (rank == 0) write_contact_files(c, j, r.steps, r.face_nx, r.face_ny, r.face_spacing, prov);
   if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
-  if (r.failed) {
-    const ContactStep& last = r.steps.back();
-    if (rank == 0) {
-      std::fprintf(stderr, "wetroad: error: contact step %zu did not converge: %s\n", r.steps.size(), last.message.c_str());
-      std::fprintf(stderr, "  relative change per Signorini iteration:");
-      for (double h : last.history) std::fprintf(stderr, " %.2e", h);
-      std::fprintf(stderr, "\n  the %zu finished steps are kept%s\n", r.steps.size() - 1,
-                   c.json.empty() ? "" : (" in " + c.json + " (status \"failed\")").c_str());
-    }
-    return 3;
-  }
+  if (r.failed) return rank == 0 ? report_failure(c, r.steps, "relative change per Signorini iteration") : 3;
   if (talk) {
     std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s)\n",
                 r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks);
@@ -180,7 +285,7 @@ int run_contact(ContactCli c) {
 
 Command add_contact(CLI::App& root) {
   auto c = std::make_shared<ContactCli>();
-  CLI::App* s = root.add_subcommand("contact", "press (and shear) an elastic block on a road surface (FEM)");
+  CLI::App* s = root.add_subcommand("contact", "press (and shear) an elastic block on a road surface (FEM or spectral)");
   s->footer(
       "Problem A (normal): the top face of an elastic block (side = the surface period, a cube by default)\n"
       "is pushed down by --uz in --steps steps onto the rigid periodic obstacle; the bottom face is the\n"
@@ -191,11 +296,23 @@ Command add_contact(CLI::App& root) {
       "Mesh: trilinear bricks; the face lattice (surface spacing / --refine) for --layers layers, then the\n"
       "in-plane spacing doubles every --layers layers while the cell counts stay even (hanging nodes\n"
       "constrained); the coarsest level thickens geometrically up to the top.\n"
-      "Example: wetroad contact --surface road.h5 --problem shear --uz 9e-3 --ux 1e-3 --json mu.json");
+      "--model spectral: the periodic counterpart, an elastic layer (--thickness, default the block height)\n"
+      "with its far face displaced by --uz, or a half-space (--thickness inf) under a mean --pressure;\n"
+      "FFT boundary elements, Polonsky-Keer constrained CG (normal load only so far; small slopes).\n"
+      "It runs on FFT threads (--threads), not on MPI ranks.\n"
+      "Example: wetroad contact --surface road.h5 --problem shear --uz 9e-3 --ux 1e-3 --json mu.json\n"
+      "         wetroad contact --surface road.h5 --model spectral --thickness inf --pressure 0.01 --steps 10");
   s->add_option("--surface", c->surface, "surface file (periodic HDF5 height map)")->required();
   s->add_option("--wet", c->wet, "wet surface from `wetroad fill` (used as the obstacle instead)");
   s->add_option("--problem", c->problem, "normal (Problem A) or shear (Problem B)")->capture_default_str();
-  s->add_option("--uz", c->opt.uz, "final downward displacement of the top face, m")->required();
+  s->add_option("--uz", c->opt.uz, "final downward displacement of the top face, m");
+  s->add_option("--pressure", c->pressure, "spectral model: final mean pressure, Pa (load control; instead of --uz)");
+  s->add_option("--thickness", c->thickness,
+                "spectral model: layer thickness in m, or inf for a half-space (default: the block height)");
+  s->add_option("--spectral-tol", c->spectral_tol,
+                "spectral model: relative l1 pressure change per iteration that ends a step")
+      ->capture_default_str();
+  s->add_option("--threads", c->threads, "spectral model: FFT threads (default: all cores)");
   s->add_option("--ux", c->opt.ux, "final tangential displacement of the top face (shear), m");
   s->add_option("--steps", c->steps, "load steps per phase")->capture_default_str();
   s->add_option("--shear-steps", c->shear_steps, "load steps of the shear phase (default: --steps)");
@@ -214,10 +331,11 @@ Command add_contact(CLI::App& root) {
       ->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step")
       ->capture_default_str();
-  s->add_option("--max-iterations", c->opt.max_iterations, "Signorini iterations allowed per step")
-      ->capture_default_str();
+  s->add_option("--max-iterations", c->max_iterations,
+                 "iterations allowed per step (default: 300 Signorini iterations, fem; 5000 CG iterations, spectral)");
   s->add_flag("--vertical", c->vertical, "linearise once with vertical normals (small-slope approximation)");
-  s->add_option("--model", c->model, "contact model: fem")->capture_default_str();
+  s->add_option("--model", c->model, "contact model: fem (finite block) or spectral (periodic layer / half-space)")
+      ->capture_default_str();
   s->add_option("--json", c->json, "write the per-step results as JSON (SI units)");
   s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5");
   s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)");

@@ -241,6 +241,45 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   EXPECT_EQ(r.code, 2);
 }
 
+TEST_F(Cli, ContactSpectralModelReportsEveryStep) {
+  const std::string s = path("s.h5"), j = path("sp.json");
+  ASSERT_EQ(run("synth --size 64 --q0-ratio 2 --dx 1e-4 --h0 2e-5 --seed 4 -o " + s).code, 0);
+  CliRun r = run("contact --model spectral --surface " + s + " --uz 1e-4 --steps 3 --json " + j + " --out " + path("sp.h5"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("sp.h5")));
+  std::ifstream f(j);
+  const auto js = nlohmann::json::parse(f);
+  EXPECT_EQ(js["model"], "spectral");
+  for (const char* key : {"nodes", "dofs", "ranks", "wall_s", "thickness"}) EXPECT_TRUE(js.contains(key)) << key;
+  ASSERT_EQ(js["steps"].size(), 3u);
+  double last_area = 0, last_fz = 0;
+  for (const auto& st : js["steps"]) {
+    EXPECT_TRUE(st["converged"].get<bool>());
+    EXPECT_GT(st["fz"].get<double>(), last_fz);  // a deeper approach carries more load ...
+    EXPECT_GE(st["area_fraction"].get<double>(), last_area);  // ... on a larger contact
+    last_fz = st["fz"].get<double>();
+    last_area = st["area_fraction"].get<double>();
+  }
+  EXPECT_NEAR(js["steps"][2]["uz"].get<double>(), 1e-4, 1e-15);  // displacement control
+  // The half-space is load-controlled: the mean pressure comes back as Fz / A0.
+  r = run("contact --model spectral --thickness inf --pressure 1e-3 --steps 1 --surface " + s + " --json " + j);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream g(j);
+  const auto jh = nlohmann::json::parse(g);
+  const double a0 = std::pow(64 * 1e-4, 2);
+  EXPECT_NEAR(jh["steps"][0]["fz"].get<double>() / (1e-3 * a0), 1.0, 1e-12);
+  // Bad combinations are one-line errors with exit code 2; an iteration cap is a failure (3).
+  for (const char* bad : {"--thickness inf --uz 1e-4", "--thickness -1 --uz 1e-4", "--uz 1e-4 --pressure 1",
+                          "--pressure 1 --problem shear --ux 1e-4"}) {
+    r = run(std::string("contact --model spectral --surface ") + s + " " + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
+  }
+  r = run("contact --model spectral --surface " + s + " --uz 1e-4 --steps 1 --max-iterations 2 --json " + j);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, MissingFile) { expect_bad_input(path("nope.h5"), "no such file"); }
 
 TEST_F(Cli, NotHdf5) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lib/contact/contact_step.hpp"
 #include "lib/core/height_map.hpp"
 #include "lib/fem/elastic_block.hpp"
 
@@ -35,19 +36,6 @@ struct ContactTestOptions {
   bool facet_normals = false;  // constraint normals of the hit triangles instead of the smooth blend
   std::string vtu_path;      // write the deformed block of the last step (.vtu), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
-};
-
-struct ContactStep {
-  double uz = 0, ux = 0, fz = 0, fx = 0, fy = 0;
-  double area_fraction = 0, contact_area = 0, sigma_star = 0, mu = 0;
-  double separation = 0, max_penetration = 0;
-  int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
-  double wall_s = 0;
-  double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, phases of the step
-  bool converged = false;
-  std::string message;
-  std::vector<double> history;
-  std::vector<double> face_pressure, face_gap, face_status;  // (ny+1) x (nx+1), when requested
 };
 
 struct ContactTestResult {

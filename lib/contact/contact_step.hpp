@@ -1,0 +1,27 @@
+#pragma once
+// One load step of a contact experiment (Problem A or B, thesis sec. 4.2.2), whichever model
+// computed it (FEM: lib/fem/contact_test.hpp; spectral: lib/spectral/spectral_contact_test.hpp).
+// SI units: m, N, m^2; forces for the stated E.
+#include <string>
+#include <vector>
+
+namespace wr {
+
+struct ContactStep {
+  double uz = 0, ux = 0, fz = 0, fx = 0, fy = 0;
+  double area_fraction = 0, contact_area = 0, sigma_star = 0, mu = 0;
+  double separation = 0, max_penetration = 0;
+  // FEM: geometry (Signorini), active-set and CG iterations; spectral: 1, 0 and the
+  // constrained-CG iterations.
+  int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
+  double wall_s = 0;
+  double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, phases of the step
+  bool converged = false;
+  std::string message;
+  std::vector<double> history;  // the solver's convergence measure per iteration
+  // Contact-face maps when requested, row-major (rows = y): FEM (ny+1) x (nx+1) face nodes,
+  // spectral ny x nx grid points. Pressure Pa, gap m, status 1 in contact / 0 free.
+  std::vector<double> face_pressure, face_gap, face_status;
+};
+
+}  // namespace wr
