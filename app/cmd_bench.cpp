@@ -23,6 +23,11 @@ struct BenchCli {
   double hertz_radius = 0.1, hertz_uz = 6e-5;
   int hertz_layers = 8;
   int seeds = 10;
+  std::vector<std::size_t> spectral_sizes = {1024, 2048};
+  int spectral_loads = 10;
+  std::vector<std::size_t> kappa_sizes = {256, 512, 1024};
+  std::size_t kappa_band = 256;
+  int kappa_seeds = 4;
 };
 
 int run_speed(const BenchCli& c) {
@@ -140,6 +145,55 @@ int run_coverage(const BenchCli& c) {
   return 0;
 }
 
+int run_spectral_speed(const BenchCli& c) {
+  std::fprintf(stderr, "spectral normal contact: %d loads per surface\n", c.spectral_loads);
+  const auto rows = bench::spectral_speed(c.spectral_sizes, c.spectral_loads, c.threads);
+  std::printf("spectral normal contact (half-space, load control, sigma* = 0.01 ... %.2f, warm starts, tol 1e-8)\n",
+              0.01 * c.spectral_loads);
+  std::printf("  %6s %8s %10s %10s %8s %12s %12s %10s\n", "N", "threads", "setup [s]", "solve [s]", "iters",
+              "s/iteration", "FFT pair [s]", "A/A0 last");
+  for (const auto& r : rows)
+    std::printf("  %6zu %8d %10.3f %10.3f %8d %12.4g %12.4g %10.4f%s\n", r["n"].get<std::size_t>(),
+                r["threads"].get<int>(), r["setup_s"].get<double>(), r["solve_s"].get<double>(),
+                r["iterations"].get<int>(), r["s_per_iteration"].get<double>(), r["fft_pair_s"].get<double>(),
+                r["steps"].back()["area_fraction"].get<double>(), r["converged"].get<bool>() ? "" : "  NOT CONVERGED");
+  std::printf("  (one iteration = two convolutions = two FFT pairs plus vector work)\n");
+  if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  return 0;
+}
+
+int run_kappa(const BenchCli& c) {
+  const auto rows = bench::spectral_kappa(c.kappa_sizes, c.kappa_band, c.kappa_seeds, c.threads);
+  std::printf("spectral half-space on one band-limited surface per seed (H 0.7, q0 = 5 qL, q1 = Nyquist of %zu^2),\n"
+              "sampled on finer grids; %d seeds. kappa = A/A0 / sigma* at sigma* = 0.005 (Persson 1.596, BGT 2.507)\n",
+              c.kappa_band, c.kappa_seeds);
+  std::printf("  %6s %8s", "N", "kappa");
+  for (const auto& p : rows[0]["curve"]) std::printf("  A(%.3g)", p["sigma_star"].get<double>());
+  std::printf(" %8s\n", "wall s");
+  for (const auto& r : rows) {
+    std::printf("  %6zu %8.4f", r["n"].get<std::size_t>(), r["kappa"].get<double>());
+    for (const auto& p : r["curve"]) std::printf("  %7.5f", p["area_fraction"].get<double>());
+    std::printf(" %8.1f\n", r["wall_s"].get<double>());
+  }
+  // Observed order of the grid convergence of A/A0 (grids halving the spacing).
+  for (std::size_t k = 2; k < rows.size(); ++k) {
+    std::printf("  order over N = %zu..%zu:", rows[k - 2]["n"].get<std::size_t>(), rows[k]["n"].get<std::size_t>());
+    for (std::size_t i = 0; i < rows[k]["curve"].size(); ++i) {
+      const double a0 = rows[k - 2]["curve"][i]["area_fraction"].get<double>(),
+                   a1 = rows[k - 1]["curve"][i]["area_fraction"].get<double>(),
+                   a2 = rows[k]["curve"][i]["area_fraction"].get<double>();
+      const double ratio = (a0 - a1) / (a1 - a2);
+      if (ratio > 1)
+        std::printf("  %.2f (limit %.5f)", std::log2(ratio), a2 - (a1 - a2) / (ratio - 1));
+      else
+        std::printf("  n/a (ratio %.2g)", ratio);
+    }
+    std::printf("\n");
+  }
+  if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
 
 Command add_bench(CLI::App& root) {
@@ -163,14 +217,27 @@ Command add_bench(CLI::App& root) {
   CLI::App* co = b->add_subcommand("coverage", "Drained-limit coverage of the default surface over seeds (4 and 8 connectivity).");
   co->add_option("--seeds", c->seeds, "realizations")->capture_default_str();
   co->add_option("--json", c->json, "write the results as JSON");
+  CLI::App* ss = b->add_subcommand("spectral", "Speed of the spectral normal-contact solver (10 loads per N x N surface).");
+  ss->add_option("--sizes", c->spectral_sizes, "grid sizes N")->capture_default_str();
+  ss->add_option("--loads", c->spectral_loads, "loads per surface")->capture_default_str();
+  ss->add_option("--threads", c->threads, "FFT threads (default: all cores)");
+  ss->add_option("--json", c->json, "write the results as JSON");
+  CLI::App* ka = b->add_subcommand("kappa", "Low-pressure kappa and the grid convergence of A/A0, spectral half-space.");
+  ka->add_option("--sizes", c->kappa_sizes, "grid sizes N sampling the same surface")->capture_default_str();
+  ka->add_option("--band", c->kappa_band, "q1 = the Nyquist wavenumber of a band x band grid")->capture_default_str();
+  ka->add_option("--seeds", c->kappa_seeds, "surfaces averaged")->capture_default_str();
+  ka->add_option("--threads", c->threads, "FFT threads (default: all cores)");
+  ka->add_option("--json", c->json, "write the results as JSON");
   CLI::App* he = b->add_subcommand("hertz", "Hertz validation of the FEM contact solver over three meshes (MPI ok).");
   he->add_option("--meshes", c->hertz_meshes, "elements per face side")->capture_default_str();
   he->add_option("--radius", c->hertz_radius, "paraboloid radius of curvature, m")->capture_default_str();
   he->add_option("--uz", c->hertz_uz, "top displacement, m")->capture_default_str();
   he->add_option("--layers", c->hertz_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
   he->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su, wa, co, he] {
+  return {b, [c, sp, su, wa, co, he, ss, ka] {
             if (he->parsed()) return run_hertz(*c);
+            if (ss->parsed()) return run_spectral_speed(*c);
+            if (ka->parsed()) return run_kappa(*c);
             if (sp->parsed()) return run_speed(*c);
             if (su->parsed()) return run_summits(*c);
             if (wa->parsed()) return run_water(*c);

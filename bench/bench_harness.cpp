@@ -12,7 +12,9 @@
 #include "lib/analytic/hertz.hpp"
 #include "lib/analytic/nayak_summits.hpp"
 #include "lib/core/provenance.hpp"
+#include "lib/core/fft.hpp"
 #include "lib/fem/elastic_block.hpp"
+#include "lib/spectral/normal_contact.hpp"
 #include "roads/analyze.hpp"
 #include "roads/surface_file.hpp"
 #include "roads/surface_import.hpp"
@@ -344,6 +346,132 @@ nlohmann::json summit_ensemble(const std::vector<double>& fractions, int realiza
                     {"summit_density", sum_density / n},
                     {"nayak_density_prescribed", density_prescribed},
                     {"ks_distance", sum_ks / n}});
+  }
+  return rows;
+}
+
+}  // namespace wr::bench
+
+namespace wr::bench {
+namespace {
+
+// The self-affine test surface of the spectral benchmarks: H = 0.7, q0 = 5 qL, q1 = the
+// Nyquist wavenumber of a `band_n` grid over the same period, sampled on n x n points.
+// Band-limited below every grid's Nyquist wavenumber, so the maps of one seed on different
+// grids sample one and the same continuous surface.
+HeightMap band_limited_surface(std::size_t n, std::size_t band_n, std::uint64_t seed, int threads) {
+  SynthParams p;
+  p.nx = p.ny = n;
+  p.dx = 1e-2 / double(n);  // 1 cm period
+  p.h0 = 1e-5;
+  p.hurst = 0.7;
+  p.q0_ratio = 5;
+  p.q1 = std::numbers::pi * double(band_n) / 1e-2;
+  p.seed = seed;
+  p.threads = threads;
+  return synthesize(p).map;
+}
+
+// Half-spectrum wavenumber ring of a lattice (for the prescribed-slope check).
+double rms_slope_spectral(const HeightMap& m, int threads) {
+  RealFft2d fft(m.nx, m.ny, threads);
+  std::copy(m.h.begin(), m.h.end(), fft.real());
+  fft.forward();
+  const double qx0 = 2 * std::numbers::pi / m.lx(), qy0 = 2 * std::numbers::pi / m.ly(), n = double(m.size());
+  double s = 0;
+  for (std::size_t j = 0; j < m.ny; ++j) {
+    const double ky = qy0 * (j <= m.ny / 2 ? double(j) : double(j) - double(m.ny));
+    for (std::size_t i = 0; i < fft.nxh(); ++i) {
+      const double kx = qx0 * double(i), w = (i == 0 || 2 * i == m.nx) ? 1.0 : 2.0;
+      s += w * (kx * kx + ky * ky) * std::norm(fft.spectrum()[j * fft.nxh() + i]) / (n * n);
+    }
+  }
+  return std::sqrt(s);
+}
+
+}  // namespace
+
+nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t n : sizes) {
+    const HeightMap m = band_limited_surface(n, n, 7, threads);
+    const ElasticBody body{1.0, 0.45};
+    const double slope = rms_slope_spectral(m, threads);
+    // The floor: one forward + backward transform of the grid.
+    RealFft2d fft(n, n, threads);
+    std::fill(fft.real(), fft.real() + n * n, 1.0);
+    const int reps = 10;
+    double t0 = now();
+    for (int r = 0; r < reps; ++r) {
+      fft.forward();
+      fft.backward();
+    }
+    const double fft_pair = (now() - t0) / reps;
+    t0 = now();
+    SpectralNormalContact solver(m, body, threads);
+    const double setup = now() - t0;
+    SpectralOptions opt;
+    opt.threads = threads;
+    nlohmann::json steps = nlohmann::json::array();
+    int iterations = 0;
+    bool all_converged = true;
+    t0 = now();
+    for (int k = 1; k <= loads; ++k) {
+      const double sigma_star = 0.01 * k;  // A/A0 from about 2 % to 20 %
+      const SpectralNormalResult r = solver.solve_load(sigma_star * body.e_star() * slope, opt);
+      iterations += r.iterations;
+      all_converged &= r.converged;
+      steps.push_back({{"sigma_star", sigma_star}, {"area_fraction", r.area_fraction}, {"iterations", r.iterations},
+                       {"wall_s", r.wall_s}});
+      std::fprintf(stderr, "\r  %zu^2: load %d/%d", n, k, loads);
+    }
+    const double total = now() - t0;
+    std::fprintf(stderr, "\n");
+    rows.push_back({{"n", n},
+                    {"loads", loads},
+                    {"threads", threads > 0 ? threads : hardware_threads()},
+                    {"rms_slope", slope},
+                    {"setup_s", setup},
+                    {"solve_s", total},
+                    {"iterations", iterations},
+                    {"fft_pair_s", fft_pair},
+                    {"s_per_iteration", total / std::max(iterations, 1)},
+                    {"converged", all_converged},
+                    {"steps", steps}});
+  }
+  return rows;
+}
+
+nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads) {
+  const ElasticBody body{1.0, 0.45};
+  const std::vector<double> sigmas = {0.005, 0.01, 0.02, 0.05, 0.1, 0.2};
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t n : sizes) {
+    std::vector<double> area(sigmas.size(), 0.0);
+    double kappa = 0, slope_mean = 0, wall = 0;
+    for (int s = 0; s < seeds; ++s) {
+      const HeightMap m = band_limited_surface(n, band_n, 100 + std::uint64_t(s), threads);
+      // sigma* uses the slope of the continuous band-limited surface (the same on every grid).
+      const double slope = rms_slope_spectral(m, threads);
+      slope_mean += slope / seeds;
+      SpectralNormalContact solver(m, body, threads);
+      SpectralOptions opt;
+      opt.threads = threads;
+      opt.tolerance = 1e-10;
+      const double t0 = now();
+      for (std::size_t k = 0; k < sigmas.size(); ++k) {
+        const SpectralNormalResult r = solver.solve_load(sigmas[k] * body.e_star() * slope, opt);
+        area[k] += r.area_fraction / seeds;
+        if (k == 0) kappa += r.area_fraction / sigmas[k] / seeds;
+      }
+      wall += now() - t0;
+      std::fprintf(stderr, "\r  %zu^2 grid: seed %d/%d", n, s + 1, seeds);
+    }
+    std::fprintf(stderr, "\n");
+    nlohmann::json curve = nlohmann::json::array();
+    for (std::size_t k = 0; k < sigmas.size(); ++k) curve.push_back({{"sigma_star", sigmas[k]}, {"area_fraction", area[k]}});
+    rows.push_back({{"n", n}, {"band_n", band_n}, {"seeds", seeds}, {"rms_slope", slope_mean}, {"kappa", kappa},
+                    {"curve", curve}, {"wall_s", wall}});
   }
   return rows;
 }

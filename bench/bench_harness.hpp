@@ -33,4 +33,15 @@ nlohmann::json water_limit_coverage(int seeds);
 // Progress lines go to stderr on `rank` 0 only.
 nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz, int layers_per_level, int rank);
 
+// Speed of the spectral normal-contact solver (half-space, load control): on each N x N
+// self-affine surface, `loads` mean pressures sigma* = 0.01 ... 0.01 loads, warm-started;
+// total wall time, iterations, and the floor beside them (one forward + backward FFT).
+nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads);
+
+// Low-pressure kappa (A/A0 = kappa sigma*, eq. 3.169) and the A/A0(sigma*) curve of the
+// spectral half-space on one band-limited self-affine surface per seed (H 0.7, q0 = 5 qL,
+// q1 = Nyquist of a band_n grid) sampled on each grid of `sizes`: the grid convergence of
+// A/A0 for a fixed continuous surface. Means over `seeds`. Progress on stderr.
+nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads);
+
 }  // namespace wr::bench
