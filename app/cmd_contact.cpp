@@ -119,17 +119,20 @@ int report_failure(const ContactCli& c, const std::vector<ContactStep>& steps, c
 
 // The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.
 int run_spectral(const ContactCli& c, const LoadedSurface& s) {
-  if (c.problem == "shear")
-    throw InputError("--problem", "the spectral model has no shear test yet; use --model fem for Problem B");
   SpectralTestOptions o;
   o.uz = c.opt.uz;
   o.pressure = c.pressure;
   o.steps = c.steps;
+  o.shear = c.problem == "shear";
+  o.ux = c.opt.ux;
+  o.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
+  o.damping = c.opt.damping;
+  o.geometry_tolerance = c.opt.tolerance;
+  if (c.max_iterations > 0) (o.shear ? o.max_geometry_iterations : o.solver.max_iterations) = c.max_iterations;
   o.body.young = c.opt.young;
   o.body.poisson = c.opt.poisson;
   o.body.thickness = parse_thickness(c.thickness, c.opt.height > 0 ? c.opt.height : s.map.lx());
   o.solver.tolerance = c.spectral_tol;
-  if (c.max_iterations > 0) o.solver.max_iterations = c.max_iterations;
   o.solver.threads = c.threads;
   o.face_maps = !c.out.empty();
   o.rms_slope = rms_slope_finite_difference(s.map);
@@ -143,7 +146,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& s) {
     print_step_header();
   }
   int k = 0;
-  const SpectralTestResult r = run_spectral_normal_test(s.map, o, [&](const ContactStep& st) {
+  const SpectralTestResult r = run_spectral_contact_test(s.map, o, [&](const ContactStep& st) {
     if (talk) print_step_row(++k, st);
   });
   nlohmann::json steps = nlohmann::json::array();
@@ -151,17 +154,22 @@ int run_spectral(const ContactCli& c, const LoadedSurface& s) {
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
-  prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"pressure", c.pressure}, {"steps", c.steps},
+  prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"pressure", c.pressure},
+                     {"steps", c.steps}, {"shear_steps", o.shear_steps}, {"damping", o.damping},
+                     {"geometry_tolerance", o.geometry_tolerance},
                      {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"thickness", o.body.half_space() ? nlohmann::json("inf") : nlohmann::json(o.body.thickness)},
                      {"tolerance", o.solver.tolerance}, {"threads", c.threads}};
   prov.model = "spectral: FFT boundary elements, periodic elastic " +
                std::string(o.body.half_space() ? "half-space" : "layer with a fixed far face") +
-               ", Polonsky-Keer constrained CG";
+               ", Polonsky-Keer constrained CG (FFT-preconditioned)" +
+               (o.shear ? "; shear: frictionless tractions along the obstacle normal, Boussinesq-Cerruti coupling, "
+                          "geometry-following iteration"
+                        : "");
   double t_sol = 0;
   for (const auto& st : r.steps) t_sol += st.wall_s;
   prov.timings = {{"setup", r.wall_setup}, {"solve", t_sol}, {"total", r.wall_s}};
-  const nlohmann::json j = {{"model", "spectral"},
+  nlohmann::json j = {{"model", "spectral"},
                             {"grid_points", r.nx * r.ny},
                             {"nodes", r.nx * r.ny},
                             {"dofs", r.nx * r.ny},
@@ -175,10 +183,16 @@ int run_spectral(const ContactCli& c, const LoadedSurface& s) {
                             {"status", r.failed ? "failed" : "ok"},
                             {"steps", steps},
                             {"provenance", prov.to_json()}};
+  const ContactStep* peak = peak_friction(r.steps);
+  if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
   write_contact_files(c, j, r.steps, r.nx, r.ny, r.spacing, prov);
-  if (r.failed) return report_failure(c, r.steps, "Polonsky-Keer error per iteration");
+  if (r.failed)
+    return report_failure(c, r.steps, o.shear ? "relative change per geometry iteration" : "Polonsky-Keer error per iteration");
   if (talk) {
     std::printf("  %zu grid points, %d FFT thread(s)\n", r.nx * r.ny, c.threads > 0 ? c.threads : hardware_threads());
+    if (peak)
+      std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
+                  peak->ux, int(peak - r.steps.data()) + 1);
     std::printf("  timing [s]: setup %.2f  solve %.2f  total %.2f\n", r.wall_setup, t_sol, r.wall_s);
   }
   return 0;
@@ -264,7 +278,7 @@ int run_contact(ContactCli c) {
                       {"status", r.failed ? "failed" : "ok"},
                       {"steps", steps},
                       {"provenance", prov.to_json()}};
-  const ContactStep* peak = peak_friction(r);
+  const ContactStep* peak = peak_friction(r.steps);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
   if (rank == 0) write_contact_files(c, j, r.steps, r.face_nx, r.face_ny, r.face_spacing, prov);
   if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
@@ -332,7 +346,8 @@ Command add_contact(CLI::App& root) {
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step")
       ->capture_default_str();
   s->add_option("--max-iterations", c->max_iterations,
-                 "iterations allowed per step (default: 300 Signorini iterations, fem; 5000 CG iterations, spectral)");
+                 "iterations allowed per step (default: fem 300 Signorini iterations; spectral 5000 CG iterations, or 200 "
+                 "geometry iterations in a shear test)");
   s->add_flag("--vertical", c->vertical, "linearise once with vertical normals (small-slope approximation)");
   s->add_option("--model", c->model, "contact model: fem (finite block) or spectral (periodic layer / half-space)")
       ->capture_default_str();

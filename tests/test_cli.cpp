@@ -269,8 +269,18 @@ TEST_F(Cli, ContactSpectralModelReportsEveryStep) {
   const double a0 = std::pow(64 * 1e-4, 2);
   EXPECT_NEAR(jh["steps"][0]["fz"].get<double>() / (1e-3 * a0), 1.0, 1e-12);
   // Bad combinations are one-line errors with exit code 2; an iteration cap is a failure (3).
+  // The shear test (a layer pressed by --uz): per-step mu and the peak.
+  r = run("contact --model spectral --problem shear --uz 1e-4 --ux 5e-5 --steps 1 --shear-steps 2 --surface " + s +
+          " --json " + j);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream sh(j);
+  const auto js2 = nlohmann::json::parse(sh);
+  ASSERT_EQ(js2["steps"].size(), 3u);
+  EXPECT_TRUE(js2.contains("peak"));
+  EXPECT_GT(js2["steps"][2]["signorini_iterations"].get<int>(), 1);  // the geometry iteration ran
   for (const char* bad : {"--thickness inf --uz 1e-4", "--thickness -1 --uz 1e-4", "--uz 1e-4 --pressure 1",
-                          "--pressure 1 --problem shear --ux 1e-4"}) {
+                          "--pressure 1 --problem shear --ux 1e-4", "--thickness inf --pressure 1 --problem shear --ux 1e-4",
+                          "--uz 1e-4 --problem shear"}) {
     r = run(std::string("contact --model spectral --surface ") + s + " " + bad);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;

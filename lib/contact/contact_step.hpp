@@ -24,4 +24,8 @@ struct ContactStep {
   std::vector<double> face_pressure, face_gap, face_status;
 };
 
+// The static friction of a shear test: the converged shear step (ux != 0) with the largest mu;
+// nullptr when there is none.
+const ContactStep* peak_friction(const std::vector<ContactStep>& steps);
+
 }  // namespace wr

@@ -120,11 +120,5 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   return res;
 }
 
-const ContactStep* peak_friction(const ContactTestResult& r) {
-  const ContactStep* best = nullptr;
-  for (const ContactStep& st : r.steps)
-    if (st.converged && st.ux != 0 && (!best || st.mu > best->mu)) best = &st;
-  return best;
-}
 
 }  // namespace wr

@@ -49,9 +49,6 @@ struct ContactTestResult {
   double wall_s = 0;
 };
 
-// The static friction of a shear test: the converged shear step (ux > 0) with the largest mu;
-// nullptr when there is none.
-const ContactStep* peak_friction(const ContactTestResult& r);
 
 // `obstacle` must be periodic. `on_step` (may be empty) is called after every step.
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,

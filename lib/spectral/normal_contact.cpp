@@ -23,6 +23,7 @@ struct SpectralNormalContact::Impl {
   std::unique_ptr<RealFft2d> fft;
   std::vector<double> p, g, t, w, r, z, p_prev;
   bool have_solution = false;
+  double top = 0;  // m, the original obstacle's highest point: z = 0 of the approach
   void setup(const HeightMap& obstacle, double top, const ElasticBody& b, int th);
 
   // out = C * in (periodic convolution through the FFT).
@@ -104,12 +105,13 @@ SpectralNormalContact::SpectralNormalContact(const HeightMap& obstacle, const El
   impl_->setup(obstacle, top, body, threads);
 }
 
-void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top, const ElasticBody& b, int th) {
+void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_height, const ElasticBody& b, int th) {
   nx = obstacle.nx;
   ny = obstacle.ny;
   n = nx * ny;
   body = b;
   threads = th;
+  top = top_height;
   zo.assign(obstacle.h.begin(), obstacle.h.end());
   for (double& v : zo) v -= top;
   fft = std::make_unique<RealFft2d>(nx, ny, threads);
@@ -132,6 +134,12 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top, c
 
 
 SpectralNormalContact::~SpectralNormalContact() = default;
+
+void SpectralNormalContact::set_heights(const std::vector<double>& heights) {
+  Impl& m = *impl_;
+  if (heights.size() != m.n) throw std::invalid_argument("set_heights: the grid changed");
+  for (std::size_t k = 0; k < m.n; ++k) m.zo[k] = heights[k] - m.top;
+}
 
 const std::vector<double>& SpectralNormalContact::pressure() const { return impl_->p; }
 const std::vector<double>& SpectralNormalContact::gap() const { return impl_->g; }

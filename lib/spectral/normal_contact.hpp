@@ -61,6 +61,11 @@ class SpectralNormalContact {
   // Displacement control: approach d (m, >= 0) of the fixed face; layer only.
   SpectralNormalResult solve_approach(double approach, const SpectralOptions& opt);
 
+  // Replaces the obstacle's heights (m, same grid; measured like the original's, whose highest
+  // point stays the reference z = 0 of the approach): the geometry-following shear test moves
+  // the face over the obstacle and solves again. Keeps the pressure as the next start.
+  void set_heights(const std::vector<double>& heights);
+
   const std::vector<double>& pressure() const;  // Pa, row-major as the obstacle
   const std::vector<double>& gap() const;       // m
   std::size_t nx() const;

@@ -26,4 +26,22 @@ double normal_compliance(const ElasticBody& b, double q) {
   return half * num / den;
 }
 
+TangentialCompliance tangential_compliance(const ElasticBody& b, double qx, double qy) {
+  TangentialCompliance c;
+  const double q2 = qx * qx + qy * qy;
+  if (q2 <= 0) return c;
+  const double q = std::sqrt(q2), G = b.young / (2 * (1 + b.poisson)), nu = b.poisson;
+  c.cxx = (1 - nu * qx * qx / q2) / (G * q);
+  c.cyy = (1 - nu * qy * qy / q2) / (G * q);
+  c.cxy = -nu * qx * qy / q2 / (G * q);
+  c.cxz = (1 - 2 * nu) * qx / (2 * G * q2);
+  c.cyz = (1 - 2 * nu) * qy / (2 * G * q2);
+  return c;
+}
+
+double shear_compliance_mean(const ElasticBody& b) {
+  if (b.half_space()) return std::numeric_limits<double>::infinity();
+  return b.thickness * 2 * (1 + b.poisson) / b.young;
+}
+
 }  // namespace wr

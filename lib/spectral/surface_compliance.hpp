@@ -32,4 +32,22 @@ void check_body(const ElasticBody& body);
 // m/Pa; q >= 0.
 double normal_compliance(const ElasticBody& body, double q);
 
+// The coupled surface Green tensor of the half-space in Fourier space (Boussinesq-Cerruti;
+// Johnson, Contact Mechanics, eq. 2.18-2.19), for the body above its face: u_z positive into
+// the body, p the compressive normal traction, tau the tangential traction on the face:
+//   u_x = cxx tau_x + cxy tau_y + i cxz p,   u_y = cxy tau_x + cyy tau_y + i cyz p,
+//   u_z = -i cxz tau_x - i cyz tau_y + C(q) p.
+// The imaginary couplings carry the (1 - 2 nu) factor; they vanish for an incompressible body.
+// For a layer of thickness t >= the period the half-space values are exact to ~(qt)^2 e^-2qt
+// < 2e-4 at every non-zero lattice wave-vector; q = 0 is the layer's simple shear, u = t tau / G
+// (shear_compliance_mean) with no coupling.
+struct TangentialCompliance {
+  double cxx = 0, cyy = 0, cxy = 0;  // m/Pa
+  double cxz = 0, cyz = 0;           // m/Pa, imaginary parts
+};
+TangentialCompliance tangential_compliance(const ElasticBody& body, double qx, double qy);
+// m/Pa: mean tangential face displacement per mean shear traction of a layer with its far
+// face held (t / G); +inf for the half-space.
+double shear_compliance_mean(const ElasticBody& body);
+
 }  // namespace wr
