@@ -23,6 +23,12 @@ struct SpectralNormalContact::Impl {
   std::unique_ptr<RealFft2d> fft;
   std::vector<double> p, g, t, w, r, z, p_prev;
   bool have_solution = false;
+  // The last two converged solutions of the same kind of control and their control values:
+  // a load sweep starts each solve from their linear extrapolation (the contact grows
+  // smoothly), which finds most of the new contact points before the first iteration.
+  std::vector<double> p_last, p_before;
+  double c_last = 0, c_before = 0;
+  int history_kind = -1, history_count = 0;  // 1: load control, 0: displacement control
   double top = 0;  // m, the original obstacle's highest point: z = 0 of the approach
   void setup(const HeightMap& obstacle, double top, const ElasticBody& b, int th);
 
@@ -139,6 +145,7 @@ void SpectralNormalContact::set_heights(const std::vector<double>& heights) {
   Impl& m = *impl_;
   if (heights.size() != m.n) throw std::invalid_argument("set_heights: the grid changed");
   for (std::size_t k = 0; k < m.n; ++k) m.zo[k] = heights[k] - m.top;
+  m.history_count = 0;  // solutions on another geometry: no extrapolation from them
 }
 
 const std::vector<double>& SpectralNormalContact::pressure() const { return impl_->p; }
@@ -168,6 +175,11 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
 
   // Start: the previous solution (rescaled to the new load) or, cold, a uniform pressure
   // (load control) / the local uniaxial estimate of a Winkler bed (displacement control).
+  if (history_kind != int(load_control)) history_count = 0;
+  if (history_count >= 2 && c_last != c_before) {
+    const double f = (target - c_last) / (c_last - c_before);
+    for_each([&](std::size_t k) { p[k] = std::max(0.0, p_last[k] + f * (p_last[k] - p_before[k])); });
+  }
   const double sum_p = reduce<1>([&](std::size_t k, std::array<double, 1>& a) { a[0] += p[k]; })[0];
   if (load_control) {
     if (have_solution && sum_p > 0)
@@ -280,6 +292,15 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
       res.converged = true;
       break;
     }
+  }
+  if (res.converged) {
+    if (history_kind != int(load_control)) history_count = 0;
+    history_kind = int(load_control);
+    std::swap(p_before, p_last);
+    p_last = p;
+    c_before = c_last;
+    c_last = target;
+    ++history_count;
   }
   if (!res.converged)
     res.message = "spectral normal contact did not converge in " + std::to_string(opt.max_iterations) +
