@@ -4,10 +4,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <chrono>
 #include <limits>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "lib/analytic/contact_theory.hpp"
+#include "lib/contact/model_ladder.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/fem/contact_test.hpp"
@@ -117,8 +120,75 @@ int report_failure(const ContactCli& c, const std::vector<ContactStep>& steps, c
   return 3;
 }
 
+// The model that runs, its validity checks, and the same as JSON for every output.
+struct Validity {
+  ContactModel model;
+  std::vector<ValidityCheck> checks;
+  nlohmann::json json;
+};
+
+nlohmann::json validity_json(ContactModel m, const std::vector<ValidityCheck>& checks, const std::string& chosen_by) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& v : checks) list.push_back({{"check", v.name}, {"passed", v.passed}, {"detail", v.detail}});
+  return {{"model", model_name(m)}, {"valid", all_passed(checks)}, {"chosen_by", chosen_by}, {"checks", list}};
+}
+
+// A result outside its model's validity is said so on stderr (and flagged in --json/--out).
+void warn_if_invalid(ContactModel m, const std::vector<ValidityCheck>& checks) {
+  for (const auto& v : checks)
+    if (!v.passed)
+      std::fprintf(stderr, "wetroad: warning: outside the %s model's validity (%s): %s\n", model_name(m), v.name.c_str(),
+                   v.detail.c_str());
+}
+
+// The analytic model: Persson's contact area (erf form, eq. 3.162 / 5.3) at each mean pressure.
+int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactRequest& req, const Validity& validity) {
+  if (!(c.pressure > 0)) throw InputError("--pressure", "the analytic model needs a mean pressure, Pa");
+  if (c.steps < 1) throw InputError("--steps", "must be >= 1");
+  if (!c.out.empty()) throw InputError("--out", "the analytic model has no contact maps");
+  warn_if_invalid(validity.model, validity.checks);
+  const auto t0 = std::chrono::steady_clock::now();
+  const double a0 = s.map.lx() * s.map.ly();
+  std::vector<ContactStep> steps;
+  const bool talk = !c.quiet;
+  if (talk) {
+    std::printf("%s: %zux%zu obstacle, rms slope %.4g; analytic model (Persson, erf form; BGT slope %.3f beside it)\n",
+                s.source.c_str(), s.map.nx, s.map.ny, req.rms_slope, kappa_bgt());
+    print_step_header();
+  }
+  nlohmann::json rows = nlohmann::json::array();
+  for (int k = 1; k <= c.steps; ++k) {
+    ContactStep st;
+    const double p = c.pressure * double(k) / c.steps;
+    st.sigma_star = p / (req.e_star * req.rms_slope);
+    st.area_fraction = persson_area_fraction(st.sigma_star);
+    st.contact_area = st.area_fraction * a0;
+    st.fz = p * a0;
+    st.separation = std::numeric_limits<double>::quiet_NaN();  // not part of these theories here
+    st.converged = true;
+    steps.push_back(st);
+    if (talk) print_step_row(k, st);
+    nlohmann::json row = step_json(st);
+    row["area_fraction_bgt"] = kappa_bgt() * st.sigma_star;
+    rows.push_back(row);
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Provenance prov;
+  prov.command = "contact";
+  prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
+  prov.parameters = {{"problem", c.problem}, {"pressure", c.pressure}, {"steps", c.steps}, {"E", c.opt.young},
+                     {"nu", c.opt.poisson}};
+  prov.model = "analytic: Persson A/A0 = erf(sqrt(2) sigma*) (thesis eq. 3.162, 5.3); BGT kappa sigma* beside it";
+  prov.timings = {{"total", wall}};
+  nlohmann::json j = {{"model", "analytic"}, {"rms_slope", req.rms_slope}, {"e_star", req.e_star},
+                      {"kappa_persson", kappa_persson()}, {"kappa_bgt", kappa_bgt()}, {"wall_s", wall},
+                      {"status", "ok"}, {"steps", rows}, {"validity", validity.json}, {"provenance", prov.to_json()}};
+  if (!c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
+  return 0;
+}
+
 // The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.
-int run_spectral(const ContactCli& c, const LoadedSurface& s) {
+int run_spectral(const ContactCli& c, const LoadedSurface& s, const Validity& validity) {
   SpectralTestOptions o;
   o.uz = c.opt.uz;
   o.pressure = c.pressure;
@@ -137,6 +207,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& s) {
   o.face_maps = !c.out.empty();
   o.rms_slope = rms_slope_finite_difference(s.map);
   check_spectral_test_options(o);
+  warn_if_invalid(validity.model, validity.checks);
   const bool talk = !c.quiet;
   if (talk) {
     std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g; spectral model, %s\n", s.source.c_str(), s.map.nx,
@@ -182,6 +253,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& s) {
                             {"e_star", o.body.e_star()},
                             {"status", r.failed ? "failed" : "ok"},
                             {"steps", steps},
+                            {"validity", validity.json},
                             {"provenance", prov.to_json()}};
   const ContactStep* peak = peak_friction(r.steps);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
@@ -199,11 +271,38 @@ int run_spectral(const ContactCli& c, const LoadedSurface& s) {
 }
 
 int run_contact(ContactCli c) {
-  if (c.model != "fem" && c.model != "spectral") throw InputError("--model", "must be fem or spectral");
   if (c.problem != "normal" && c.problem != "shear") throw InputError("--problem", "must be normal or shear");
+  ContactModel model = ContactModel::fem;
+  if (c.model != "auto") {
+    try {
+      model = parse_model(c.model);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--model", e.what());
+    }
+  }
   const LoadedSurface s = load_surface(c.wet.empty() ? c.surface : c.wet);
   if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
-  if (c.model == "spectral") return run_spectral(c, s);
+  ContactRequest req;
+  req.shear = c.problem == "shear";
+  req.load_control = c.pressure > 0;
+  req.pressure = c.pressure;
+  req.rms_slope = rms_slope_finite_difference(s.map);
+  req.e_star = c.opt.young / (1 - c.opt.poisson * c.opt.poisson);
+  if (c.model == "auto") {
+    const ModelChoice choice = choose_model(req);
+    std::string why;
+    for (const auto& [m, checks] : choice.considered)
+      for (const auto& v : checks)
+        why += std::string("\n  ") + model_name(m) + ": " + v.name + (v.passed ? " passed" : " FAILED") + " (" +
+               v.detail + ")";
+    if (!choice.found) throw InputError("--model auto", "no model passes its validity checks:" + why);
+    model = choice.model;
+    if (!c.quiet) std::fprintf(stderr, "model auto: %s, the cheapest model whose checks pass:%s\n", model_name(model), why.c_str());
+  }
+  Validity validity{model, validity_checks(model, req), {}};
+  validity.json = validity_json(model, validity.checks, c.model == "auto" ? "auto" : "user");
+  if (model == ContactModel::analytic) return run_analytic(c, s, req, validity);
+  if (model == ContactModel::spectral) return run_spectral(c, s, validity);
   if (c.pressure > 0) throw InputError("--pressure", "the fem model is displacement-controlled; give --uz");
   if (!(c.opt.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
   if (c.max_iterations > 0) c.opt.max_iterations = c.max_iterations;
@@ -231,6 +330,7 @@ int run_contact(ContactCli c) {
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   const bool talk = rank == 0 && !c.quiet;
+  if (rank == 0) warn_if_invalid(model, validity.checks);
   if (talk)
     std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g (triangulated); block %s, refine %d\n",
                 s.source.c_str(), s.map.nx, s.map.ny, s.map.dx, c.opt.rms_slope,
@@ -277,6 +377,7 @@ int run_contact(ContactCli c) {
                       {"e_star", r.e_star},
                       {"status", r.failed ? "failed" : "ok"},
                       {"steps", steps},
+                      {"validity", validity.json},
                       {"provenance", prov.to_json()}};
   const ContactStep* peak = peak_friction(r.steps);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
@@ -349,7 +450,9 @@ Command add_contact(CLI::App& root) {
                  "iterations allowed per step (default: fem 300 Signorini iterations; spectral 5000 CG iterations, or 200 "
                  "geometry iterations in a shear test)");
   s->add_flag("--vertical", c->vertical, "linearise once with vertical normals (small-slope approximation)");
-  s->add_option("--model", c->model, "contact model: fem (finite block) or spectral (periodic layer / half-space)")
+  s->add_option("--model", c->model,
+                 "contact model: analytic (Persson/BGT, needs --pressure), spectral (periodic layer / half-space), fem "
+                 "(finite block), or auto (the cheapest whose validity checks pass)")
       ->capture_default_str();
   s->add_option("--json", c->json, "write the per-step results as JSON (SI units)");
   s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5");

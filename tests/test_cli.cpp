@@ -290,6 +290,33 @@ TEST_F(Cli, ContactSpectralModelReportsEveryStep) {
   EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
 }
 
+TEST_F(Cli, ContactAutoModelSaysWhichChecksDecided) {
+  const std::string s = path("s.h5"), j = path("auto.json");
+  ASSERT_EQ(run("synth --size 64 --q0-ratio 2 --dx 1e-4 --h0 5e-6 --seed 4 -o " + s).code, 0);  // gentle
+  // Low pressure: the analytic model answers, and the checks are in the JSON.
+  CliRun r = run("contact --model auto --pressure 1e-4 --steps 1 --surface " + s + " --json " + j);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("model auto: analytic"), std::string::npos) << r.err;
+  std::ifstream f(j);
+  auto js = nlohmann::json::parse(f);
+  EXPECT_EQ(js["model"], "analytic");
+  EXPECT_TRUE(js["validity"]["valid"].get<bool>());
+  EXPECT_EQ(js["validity"]["chosen_by"], "auto");
+  // Friction: only the FEM; a spectral shear test asked for by name is flagged, not silent.
+  r = run("contact --model spectral --problem shear --uz 1e-5 --ux 1e-5 --steps 1 --shear-steps 1 --surface " + s +
+          " --json " + j);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: outside the spectral model's validity (lateral finiteness)"), std::string::npos) << r.err;
+  std::ifstream g(j);
+  js = nlohmann::json::parse(g);
+  EXPECT_FALSE(js["validity"]["valid"].get<bool>());
+  // Nothing can answer a pressure-controlled shear test on a steep surface: an error, exit 2.
+  ASSERT_EQ(run("synth --size 32 --q0-ratio 2 --dx 1e-4 --h0 1e-4 --seed 4 -o " + path("steep.h5")).code, 0);
+  r = run("contact --model auto --pressure 1 --problem shear --ux 1e-4 --surface " + path("steep.h5"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("no model passes its validity checks"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, MissingFile) { expect_bad_input(path("nope.h5"), "no such file"); }
 
 TEST_F(Cli, NotHdf5) {

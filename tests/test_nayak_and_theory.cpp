@@ -6,6 +6,7 @@
 #include <random>
 
 #include "lib/analytic/contact_theory.hpp"
+#include "lib/contact/model_ladder.hpp"
 #include "lib/analytic/nayak_summits.hpp"
 
 namespace wr {
@@ -60,6 +61,38 @@ TEST(ContactTheory, PerssonAreaTendsToKappaAtLowPressure) {
   const double s = 1e-5;
   EXPECT_NEAR(persson_area_fraction(s) / s, kappa_persson(), 1e-6);
   EXPECT_NEAR(persson_area_fraction(1e3), 1.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace wr
+
+namespace wr {
+namespace {
+
+// The ladder takes the cheapest model whose checks pass, and says why.
+TEST(ModelLadder, AutoPicksTheCheapestValidModel) {
+  ContactRequest r;
+  r.load_control = true;
+  r.e_star = 1.0;
+  r.rms_slope = 0.1;
+  r.pressure = 0.01 * r.e_star * r.rms_slope;  // sigma* = 0.01: A/A0 about 1.6 %
+  EXPECT_EQ(choose_model(r).model, ContactModel::analytic);
+  r.pressure = 0.3 * r.e_star * r.rms_slope;  // A/A0 about 0.32: beyond the low-pressure regime
+  ModelChoice c = choose_model(r);
+  ASSERT_TRUE(c.found);
+  EXPECT_EQ(c.model, ContactModel::spectral);
+  ASSERT_EQ(c.considered.size(), 2u);  // analytic rejected first, with its reason
+  EXPECT_FALSE(all_passed(c.considered[0].second));
+  r.rms_slope = 0.5;  // steep: no small-slope model; the FEM is displacement-controlled only
+  r.pressure = 0.3 * r.e_star * r.rms_slope;
+  EXPECT_FALSE(choose_model(r).found);
+  r.load_control = false;  // --uz on the steep scene: the FEM
+  EXPECT_EQ(choose_model(r).model, ContactModel::fem);
+  r.rms_slope = 0.05;  // friction is never the periodic layer's (translation invariance)
+  r.shear = true;
+  EXPECT_EQ(choose_model(r).model, ContactModel::fem);
+  EXPECT_THROW(parse_model("auto"), std::invalid_argument);
+  EXPECT_EQ(parse_model("spectral"), ContactModel::spectral);
 }
 
 }  // namespace

@@ -1,0 +1,48 @@
+#pragma once
+// The model ladder of ../shared/design.md: analytic (microseconds) < spectral (seconds) < FEM
+// (minutes). Each model declares validity checks for a contact request; `auto` takes the
+// cheapest model whose checks all pass, and every result carries the checks of the model that
+// produced it, so a result outside its model's validity is flagged, never silent.
+#include <string>
+#include <vector>
+
+namespace wr {
+
+enum class ContactModel { analytic, spectral, fem };
+
+struct ContactRequest {
+  bool shear = false;         // Problem B (friction) requested
+  bool load_control = false;  // a mean pressure (--pressure) instead of a displacement (--uz)
+  double pressure = 0;        // Pa, final mean pressure (load control)
+  double rms_slope = 0;       // of the obstacle
+  double e_star = 0;          // Pa
+};
+
+struct ValidityCheck {
+  std::string name;
+  bool passed = false;
+  std::string detail;  // the numbers or the reason
+};
+
+// Small-slope limit of the spectral model (rms slope). Provisional: the definition of a
+// small-slope scene; the FEM comparison over slopes is to refine it.
+constexpr double kSpectralSlopeLimit = 0.2;
+// Upper end of the low-pressure regime in which the analytic theories apply (A/A0).
+constexpr double kAnalyticAreaLimit = 0.1;
+
+const char* model_name(ContactModel m);
+// Throws std::invalid_argument for an unknown name ("auto" is not a model).
+ContactModel parse_model(const std::string& name);
+
+std::vector<ValidityCheck> validity_checks(ContactModel m, const ContactRequest& r);
+bool all_passed(const std::vector<ValidityCheck>& checks);
+
+struct ModelChoice {
+  bool found = false;
+  ContactModel model = ContactModel::fem;
+  std::vector<std::pair<ContactModel, std::vector<ValidityCheck>>> considered;  // cheapest first
+};
+// The cheapest model whose checks pass; `found` false when none does.
+ModelChoice choose_model(const ContactRequest& r);
+
+}  // namespace wr
