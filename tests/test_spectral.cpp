@@ -115,6 +115,22 @@ TEST(SpectralNormal, ParaboloidMatchesHertz) {
   EXPECT_LT(r.max_penetration, 1e-6 * a_target * a_target / R);
 }
 
+// A residual that stops decreasing ends the solve with a reason, long before the cap: here a
+// tolerance no error can meet (the error settles at rounding level, or 0, once converged).
+TEST(SpectralNormal, StagnationIsDetectedAndReported) {
+  SpectralNormalContact solver(paraboloid_cap(64, 1e-2, 5e-2), ElasticBody{1.0, 0.45}, 1);
+  SpectralOptions opt;
+  opt.tolerance = -1;
+  opt.max_iterations = 100000;
+  const SpectralNormalResult r = solver.solve_load(1e-4, opt);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.message.find("stagnated"), std::string::npos) << r.message;
+  EXPECT_LT(r.iterations, 1000);
+  EXPECT_EQ(r.history.size(), std::size_t(r.iterations));
+  EXPECT_TRUE(stagnated({1, 1, 1, 1}, 2));
+  EXPECT_FALSE(stagnated({8, 4, 2, 1}, 2));
+}
+
 // Displacement control on a layer agrees with load control at the load it produces.
 TEST(SpectralNormal, DisplacementAndLoadControlAgreeOnALayer) {
   const std::size_t n = 128;

@@ -141,6 +141,14 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
 
 SpectralNormalContact::~SpectralNormalContact() = default;
 
+bool stagnated(const std::vector<double>& h, std::size_t window) {
+  if (window == 0 || h.size() < 2 * window) return false;
+  const auto end = h.end();
+  const double recent = *std::min_element(end - long(window), end);
+  const double before = *std::min_element(end - 2 * long(window), end - long(window));
+  return recent > 0.5 * before;
+}
+
 void SpectralNormalContact::set_heights(const std::vector<double>& heights) {
   Impl& m = *impl_;
   if (heights.size() != m.n) throw std::invalid_argument("set_heights: the grid changed");
@@ -292,6 +300,11 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
       res.converged = true;
       break;
     }
+    if (stagnated(res.history, opt.stagnation_window)) {
+      res.message = "spectral normal contact stagnated: the error " + std::to_string(err) + " has not halved in " +
+                    std::to_string(opt.stagnation_window) + " iterations (tolerance " + std::to_string(opt.tolerance) + ")";
+      break;
+    }
   }
   if (res.converged) {
     if (history_kind != int(load_control)) history_count = 0;
@@ -302,7 +315,7 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
     c_last = target;
     ++history_count;
   }
-  if (!res.converged)
+  if (!res.converged && res.message.empty())
     res.message = "spectral normal contact did not converge in " + std::to_string(opt.max_iterations) +
                   " iterations (last error " + (res.history.empty() ? "-" : std::to_string(res.history.back())) + ")";
   summarise(load_control, d, res);

@@ -27,9 +27,14 @@
 
 namespace wr {
 
+// True when the best value of the last `window` entries of `history` is not below half the best
+// of the `window` before: a residual that no longer decreases (shared by the spectral solvers).
+bool stagnated(const std::vector<double>& history, std::size_t window);
+
 struct SpectralOptions {
   double tolerance = 1e-8;    // relative l1 change of the pressure per iteration
   int max_iterations = 5000;  // CG iterations per solve
+  std::size_t stagnation_window = 100;  // stop when the error has not halved over two windows
   int threads = 0;            // FFT threads (0: all hardware threads)
 };
 

@@ -90,6 +90,11 @@ class GeometryFollowing {
         st.converged = true;
         break;
       }
+      if (stagnated(st.history, 20)) {
+        st.message = "geometry iteration stagnated: the change " + std::to_string(change) +
+                     " has not halved in 20 iterations (tolerance " + std::to_string(opt_.geometry_tolerance) + ")";
+        break;
+      }
     }
     // Forces at the settled geometry: the far face holds Fx = sum p dh/dx dA.
     sample_all();
@@ -139,6 +144,8 @@ void check_spectral_test_options(const SpectralTestOptions& opt) {
   if (opt.shear && !(opt.ux != 0)) throw InputError("--ux", "the shear test needs a tangential displacement");
   if (opt.steps < 1 || (opt.shear && opt.shear_steps < 1)) throw InputError("--steps", "must be >= 1");
   if (!(opt.damping > 0 && opt.damping <= 1)) throw InputError("--damping", "must lie in (0, 1]");
+  if (!(opt.solver.tolerance > 0)) throw InputError("--spectral-tol", "must be > 0");
+  if (!(opt.geometry_tolerance > 0)) throw InputError("--tol", "must be > 0");
   if (!(opt.rms_slope > 0)) throw InputError("--surface", "the obstacle has no slope (flat surface)");
   try {
     check_body(opt.body);
