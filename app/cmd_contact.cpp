@@ -11,6 +11,7 @@
 #include "app/commands.hpp"
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/contact/model_ladder.hpp"
+#include "lib/contact/periodic_obstacle.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/fem/contact_test.hpp"
@@ -188,7 +189,12 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
 }
 
 // The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.
-int run_spectral(const ContactCli& c, const LoadedSurface& s, const Validity& validity) {
+int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validity& validity) {
+  if (c.opt.refine < 1 || c.opt.refine > 16) throw InputError("--refine", "must be 1 ... 16");
+  // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
+  LoadedSurface s;
+  s.source = surface.source;
+  s.map = resample_triangulated(surface.map, c.opt.refine);
   SpectralTestOptions o;
   o.uz = c.opt.uz;
   o.pressure = c.pressure;
@@ -431,7 +437,9 @@ Command add_contact(CLI::App& root) {
   s->add_option("--ux", c->opt.ux, "final tangential displacement of the top face (shear), m");
   s->add_option("--steps", c->steps, "load steps per phase")->capture_default_str();
   s->add_option("--shear-steps", c->shear_steps, "load steps of the shear phase (default: --steps)");
-  s->add_option("--refine", c->opt.refine, "contact-face spacing = surface spacing / refine")->capture_default_str();
+  s->add_option("--refine", c->opt.refine,
+                 "contact-face spacing = surface spacing / refine (fem mesh; spectral grid on the triangulated surface)")
+      ->capture_default_str();
   s->add_option("--height", c->opt.height, "block height in m (default: the period, a cube)");
   s->add_option("--layers", c->opt.layers_per_level, "brick layers at each in-plane spacing")->capture_default_str();
   s->add_option("--coarsen", c->opt.max_coarsenings, "in-plane spacing doublings allowed away from the face")

@@ -1,5 +1,7 @@
 #include "lib/contact/periodic_obstacle.hpp"
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -160,6 +162,18 @@ std::optional<RayHit> PeriodicObstacle::cast(const Vec3& p, const Vec3& d, doubl
     best->normal = contact_normal(best->point);
   }
   return best;
+}
+
+HeightMap resample_triangulated(const HeightMap& surface, int refine) {
+  if (refine < 1 || refine > 16) throw std::invalid_argument("refine must be 1 ... 16");
+  if (refine == 1) return surface;
+  const PeriodicObstacle ob(surface);
+  HeightMap fine(surface.nx * std::size_t(refine), surface.ny * std::size_t(refine), surface.dx / refine,
+                 surface.dy / refine);
+  fine.periodic = true;
+  for (std::size_t j = 0; j < fine.ny; ++j)
+    for (std::size_t i = 0; i < fine.nx; ++i) fine(i, j) = ob.height(double(i) * fine.dx, double(j) * fine.dy);
+  return fine;
 }
 
 }  // namespace wr

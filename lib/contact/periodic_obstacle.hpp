@@ -58,4 +58,9 @@ class PeriodicObstacle {
   double max_h_ = 0;
 };
 
+// The obstacle sampled on a lattice `refine` times finer (1 ... 16), heights of the same
+// triangulated surface: the spectral model's counterpart of the FEM face lattice (obstacle
+// spacing / refine). Periodic in, periodic out.
+HeightMap resample_triangulated(const HeightMap& surface, int refine);
+
 }  // namespace wr
