@@ -6,6 +6,7 @@
 #include "app/commands.hpp"
 #include "bench/bench_harness.hpp"
 #include "lib/fem/petsc_session.hpp"
+#include <mpi.h>
 #include "lib/io/atomic_output.hpp"
 #include <cmath>
 
@@ -28,6 +29,8 @@ struct BenchCli {
   std::vector<std::size_t> kappa_sizes = {256, 512, 1024};
   std::size_t kappa_band = 256;
   int kappa_seeds = 4;
+  std::vector<double> compare_h0 = {1.5e-5, 3e-5, 6e-5, 1e-4, 2e-4};
+  int compare_refine = 1;
 };
 
 int run_speed(const BenchCli& c) {
@@ -194,6 +197,30 @@ int run_kappa(const BenchCli& c) {
   return 0;
 }
 
+int run_spectral_vs_fem(const BenchCli& c) {
+  int argc = 1;
+  char name[] = "wetroad";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  PetscSession petsc(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto rows = bench::spectral_vs_fem(c.compare_h0, c.compare_refine, rank);
+  if (rank != 0) return 0;
+  std::printf("spectral layer against the FEM block at equal mean pressure, refine %d (100 x 100, 1 cm, H 0.7)\n",
+              c.compare_refine);
+  std::printf("  %9s %9s %9s %12s %11s %11s %9s %9s %9s\n", "h0 [m]", "rms slope", "FEM nodes", "Fz [N]", "A/A0 FEM",
+              "A/A0 spec", "diff", "FEM s", "spec s");
+  for (const auto& r : rows)
+    std::printf("  %9.3g %9.3f %9zu %12.4e %11.4f %11.4f %8.1f%% %9.1f %9.2f%s\n", r["h0"].get<double>(),
+                r["rms_slope"].get<double>(), r["fem_nodes"].get<std::size_t>(), r["fem_fz"].get<double>(),
+                r["fem_area_fraction"].get<double>(), r["spectral_area_fraction"].get<double>(),
+                100 * r["area_difference"].get<double>(), r["fem_wall_s"].get<double>(), r["spectral_wall_s"].get<double>(),
+                r["fem_converged"].get<bool>() && r["spectral_converged"].get<bool>() ? "" : "  NOT CONVERGED");
+  if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
 
 Command add_bench(CLI::App& root) {
@@ -228,13 +255,18 @@ Command add_bench(CLI::App& root) {
   ka->add_option("--seeds", c->kappa_seeds, "surfaces averaged")->capture_default_str();
   ka->add_option("--threads", c->threads, "FFT threads (default: all cores)");
   ka->add_option("--json", c->json, "write the results as JSON");
+  CLI::App* vs = b->add_subcommand("spectral-vs-fem", "A/A0 of the spectral layer against the FEM block over slopes (MPI ok).");
+  vs->add_option("--h0", c->compare_h0, "rms heights of the scenes, m")->capture_default_str();
+  vs->add_option("--refine", c->compare_refine, "face refinement of both models")->capture_default_str();
+  vs->add_option("--json", c->json, "write the results as JSON");
   CLI::App* he = b->add_subcommand("hertz", "Hertz validation of the FEM contact solver over three meshes (MPI ok).");
   he->add_option("--meshes", c->hertz_meshes, "elements per face side")->capture_default_str();
   he->add_option("--radius", c->hertz_radius, "paraboloid radius of curvature, m")->capture_default_str();
   he->add_option("--uz", c->hertz_uz, "top displacement, m")->capture_default_str();
   he->add_option("--layers", c->hertz_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
   he->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su, wa, co, he, ss, ka] {
+  return {b, [c, sp, su, wa, co, he, ss, ka, vs] {
+            if (vs->parsed()) return run_spectral_vs_fem(*c);
             if (he->parsed()) return run_hertz(*c);
             if (ss->parsed()) return run_spectral_speed(*c);
             if (ka->parsed()) return run_kappa(*c);

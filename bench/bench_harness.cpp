@@ -13,8 +13,12 @@
 #include "lib/analytic/nayak_summits.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/core/fft.hpp"
+#include "lib/contact/periodic_obstacle.hpp"
+#include "lib/fem/contact_test.hpp"
 #include "lib/fem/elastic_block.hpp"
 #include "lib/spectral/normal_contact.hpp"
+#include "lib/spectral/spectral_contact_test.hpp"
+#include "roads/height_stats.hpp"
 #include "roads/analyze.hpp"
 #include "roads/surface_file.hpp"
 #include "roads/surface_import.hpp"
@@ -472,6 +476,59 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
     for (std::size_t k = 0; k < sigmas.size(); ++k) curve.push_back({{"sigma_star", sigmas[k]}, {"area_fraction", area[k]}});
     rows.push_back({{"n", n}, {"band_n", band_n}, {"seeds", seeds}, {"rms_slope", slope_mean}, {"kappa", kappa},
                     {"curve", curve}, {"wall_s", wall}});
+  }
+  return rows;
+}
+
+}  // namespace wr::bench
+
+namespace wr::bench {
+
+nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (double h0 : h0s) {
+    // The comparison scene: 100 x 100, 0.1 mm spacing (1 cm period), H 0.7, q0 = 2 qL, seed 3,
+    // pressed to about a third of contact whatever h0 (uz proportional to h0).
+    SynthParams sp;
+    sp.nx = sp.ny = 100;
+    sp.dx = 1e-4;
+    sp.h0 = h0;
+    sp.hurst = 0.7;
+    sp.q0_ratio = 2;
+    sp.seed = 3;
+    sp.threads = 1;
+    const HeightMap m = synthesize(sp).map;
+    const double slope = rms_slope_finite_difference(m, 1);
+    ContactTestOptions fo;
+    fo.uz = 2.5e-4 * h0 / 3e-5;
+    fo.normal_steps = 2;
+    fo.refine = refine;
+    fo.tolerance = 1e-4;
+    fo.rms_slope = slope;
+    double t0 = now();
+    const ContactTestResult fr = run_contact_test(m, fo);
+    const double fem_wall = now() - t0;
+    const ContactStep& fs = fr.steps.back();
+    nlohmann::json row = {{"h0", h0}, {"rms_slope", slope}, {"refine", refine}, {"fem_nodes", fr.nodes},
+                          {"fem_fz", fs.fz}, {"fem_area_fraction", fs.area_fraction}, {"fem_converged", !fr.failed},
+                          {"fem_wall_s", fem_wall}};
+    if (rank == 0) {
+      // The spectral layer (thickness = the period) at the FEM's mean pressure, on the same face lattice.
+      SpectralTestOptions so;
+      so.pressure = fs.fz / (m.lx() * m.ly());
+      so.steps = 2;
+      so.body = ElasticBody{fo.young, fo.poisson, m.lx()};
+      so.rms_slope = slope;
+      so.solver.threads = 1;
+      t0 = now();
+      const SpectralTestResult r = run_spectral_contact_test(resample_triangulated(m, refine), so);
+      row["spectral_area_fraction"] = r.steps.back().area_fraction;
+      row["spectral_converged"] = !r.failed;
+      row["spectral_wall_s"] = now() - t0;
+      row["area_difference"] = r.steps.back().area_fraction / fs.area_fraction - 1;
+      std::fprintf(stderr, "  h0 %.3g m (rms slope %.3f) done: FEM %.1f s\n", h0, slope, fem_wall);
+    }
+    rows.push_back(row);
   }
   return rows;
 }

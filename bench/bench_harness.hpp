@@ -44,4 +44,11 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
 // A/A0 for a fixed continuous surface. Means over `seeds`. Progress on stderr.
 nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads);
 
+// Spectral against FEM on small and growing slopes (issue 5, bar 3): for each h0, a 100 x 100
+// self-affine scene (H 0.7, q0 = 2 qL, period 1 cm) pressed by the FEM block (uz proportional
+// to h0, about a third of contact) at face refinement `refine`; then the spectral layer
+// (thickness = the period) at the FEM's mean pressure on the same face lattice. A/A0 of both.
+// PETSc must be initialised; the spectral runs and progress lines on `rank` 0.
+nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank);
+
 }  // namespace wr::bench
