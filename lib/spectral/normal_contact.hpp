@@ -35,6 +35,7 @@ struct SpectralOptions {
   double tolerance = 1e-8;    // relative l1 change of the pressure per iteration
   int max_iterations = 5000;  // CG iterations per solve
   std::size_t stagnation_window = 100;  // stop when the error has not halved over two windows
+  int admit_every = 8;        // iterations between admissions of penetrating points (1: Polonsky-Keer)
   int threads = 0;            // FFT threads (0: all hardware threads)
 };
 
