@@ -26,6 +26,8 @@ struct BenchCli {
   int seeds = 10;
   std::vector<std::size_t> spectral_sizes = {1024, 2048};
   int spectral_loads = 10;
+  double spectral_tol = 1e-8;
+  int admit_every = 8;
   std::vector<std::size_t> kappa_sizes = {256, 512, 1024};
   std::size_t kappa_band = 256;
   int kappa_seeds = 4;
@@ -150,9 +152,9 @@ int run_coverage(const BenchCli& c) {
 
 int run_spectral_speed(const BenchCli& c) {
   std::fprintf(stderr, "spectral normal contact: %d loads per surface\n", c.spectral_loads);
-  const auto rows = bench::spectral_speed(c.spectral_sizes, c.spectral_loads, c.threads);
-  std::printf("spectral normal contact (half-space, load control, sigma* = 0.01 ... %.2f, warm starts, tol 1e-8)\n",
-              0.01 * c.spectral_loads);
+  const auto rows = bench::spectral_speed(c.spectral_sizes, c.spectral_loads, c.threads, c.spectral_tol, c.admit_every);
+  std::printf("spectral normal contact (half-space, load control, sigma* = 0.01 ... %.2f, warm starts, tol %.0e, "
+              "admissions every %d)\n", 0.01 * c.spectral_loads, c.spectral_tol, c.admit_every);
   std::printf("  %6s %8s %10s %10s %8s %12s %12s %10s\n", "N", "threads", "setup [s]", "solve [s]", "iters",
               "s/iteration", "FFT pair [s]", "A/A0 last");
   for (const auto& r : rows)
@@ -248,6 +250,9 @@ Command add_bench(CLI::App& root) {
   ss->add_option("--sizes", c->spectral_sizes, "grid sizes N")->capture_default_str();
   ss->add_option("--loads", c->spectral_loads, "loads per surface")->capture_default_str();
   ss->add_option("--threads", c->threads, "FFT threads (default: all cores)");
+  ss->add_option("--tol", c->spectral_tol, "relative l1 pressure change that ends a solve")->capture_default_str();
+  ss->add_option("--admit-every", c->admit_every, "iterations between admissions of penetrating points")
+      ->capture_default_str();
   ss->add_option("--json", c->json, "write the results as JSON");
   CLI::App* ka = b->add_subcommand("kappa", "Low-pressure kappa and the grid convergence of A/A0, spectral half-space.");
   ka->add_option("--sizes", c->kappa_sizes, "grid sizes N sampling the same surface")->capture_default_str();

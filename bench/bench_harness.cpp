@@ -395,7 +395,8 @@ double rms_slope_spectral(const HeightMap& m, int threads) {
 
 }  // namespace
 
-nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads) {
+nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads, double tolerance,
+                              int admit_every) {
   nlohmann::json rows = nlohmann::json::array();
   for (std::size_t n : sizes) {
     const HeightMap m = band_limited_surface(n, n, 7, threads);
@@ -416,6 +417,8 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
     const double setup = now() - t0;
     SpectralOptions opt;
     opt.threads = threads;
+    opt.tolerance = tolerance;
+    opt.admit_every = admit_every;
     nlohmann::json steps = nlohmann::json::array();
     int iterations = 0;
     bool all_converged = true;
@@ -438,6 +441,8 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
                     {"setup_s", setup},
                     {"solve_s", total},
                     {"iterations", iterations},
+                    {"tolerance", tolerance},
+                    {"admit_every", admit_every},
                     {"fft_pair_s", fft_pair},
                     {"s_per_iteration", total / std::max(iterations, 1)},
                     {"converged", all_converged},

@@ -36,7 +36,8 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz, i
 // Speed of the spectral normal-contact solver (half-space, load control): on each N x N
 // self-affine surface, `loads` mean pressures sigma* = 0.01 ... 0.01 loads, warm-started;
 // total wall time, iterations, and the floor beside them (one forward + backward FFT).
-nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads);
+nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads, double tolerance,
+                              int admit_every);
 
 // Low-pressure kappa (A/A0 = kappa sigma*, eq. 3.169) and the A/A0(sigma*) curve of the
 // spectral half-space on one band-limited self-affine surface per seed (H 0.7, q0 = 5 qL,
