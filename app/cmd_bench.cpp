@@ -19,6 +19,7 @@ struct BenchCli {
   bool files = false;
   std::vector<double> fractions = {1.0, 0.5, 0.25, 0.125};
   std::string json;
+  std::string plot;  // SVG chart, where a bench draws one
   std::size_t water_n = 1024;
   std::vector<int> hertz_meshes = {32, 64, 128};
   double hertz_radius = 0.1, hertz_uz = 6e-5;
@@ -196,6 +197,7 @@ int run_kappa(const BenchCli& c) {
     std::printf("\n");
   }
   if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  if (!c.plot.empty()) bench::plot_kappa(rows, c.plot);
   return 0;
 }
 
@@ -220,6 +222,7 @@ int run_spectral_vs_fem(const BenchCli& c) {
                 100 * r["area_difference"].get<double>(), r["fem_wall_s"].get<double>(), r["spectral_wall_s"].get<double>(),
                 r["fem_converged"].get<bool>() && r["spectral_converged"].get<bool>() ? "" : "  NOT CONVERGED");
   if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  if (!c.plot.empty()) bench::plot_spectral_vs_fem(rows, c.plot);
   return 0;
 }
 
@@ -260,10 +263,12 @@ Command add_bench(CLI::App& root) {
   ka->add_option("--seeds", c->kappa_seeds, "surfaces averaged")->capture_default_str();
   ka->add_option("--threads", c->threads, "FFT threads (default: all cores)");
   ka->add_option("--json", c->json, "write the results as JSON");
+  ka->add_option("--plot", c->plot, "draw A/A0 against sigma* per grid with Persson's and BGT's lines (SVG)");
   CLI::App* vs = b->add_subcommand("spectral-vs-fem", "A/A0 of the spectral layer against the FEM block over slopes (MPI ok).");
   vs->add_option("--h0", c->compare_h0, "rms heights of the scenes, m")->capture_default_str();
   vs->add_option("--refine", c->compare_refine, "face refinement of both models")->capture_default_str();
   vs->add_option("--json", c->json, "write the results as JSON");
+  vs->add_option("--plot", c->plot, "draw the difference against rms slope (SVG)");
   CLI::App* he = b->add_subcommand("hertz", "Hertz validation of the FEM contact solver over three meshes (MPI ok).");
   he->add_option("--meshes", c->hertz_meshes, "elements per face side")->capture_default_str();
   he->add_option("--radius", c->hertz_radius, "paraboloid radius of curvature, m")->capture_default_str();

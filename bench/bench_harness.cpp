@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "lib/analytic/contact_theory.hpp"
 #include "lib/analytic/hertz.hpp"
 #include "lib/analytic/nayak_summits.hpp"
 #include "lib/core/provenance.hpp"
@@ -19,6 +20,7 @@
 #include "lib/spectral/normal_contact.hpp"
 #include "lib/spectral/spectral_contact_test.hpp"
 #include "roads/height_stats.hpp"
+#include "reports/plot.hpp"
 #include "roads/analyze.hpp"
 #include "roads/surface_file.hpp"
 #include "roads/surface_import.hpp"
@@ -536,6 +538,54 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
     rows.push_back(row);
   }
   return rows;
+}
+
+}  // namespace wr::bench
+
+namespace wr::bench {
+
+void plot_kappa(const nlohmann::json& rows, const std::string& path) {
+  PlotSpec p;
+  p.title = "Spectral half-space: A/A0 against sigma* on finer grids of one band-limited surface";
+  p.xlabel = "sigma* = p / (E* rms slope)";
+  p.ylabel = "A/A0";
+  p.logx = p.logy = true;
+  std::vector<double> s_all;
+  for (const auto& r : rows) {
+    PlotSeries s;
+    s.label = std::to_string(r["n"].get<std::size_t>()) + "^2 grid (kappa " + std::to_string(r["kappa"].get<double>()).substr(0, 5) + ")";
+    for (const auto& c : r["curve"]) {
+      s.x.push_back(c["sigma_star"].get<double>());
+      s.y.push_back(c["area_fraction"].get<double>());
+    }
+    s_all = s.x;
+    p.series.push_back(s);
+  }
+  if (!s_all.empty()) {
+    PlotSeries persson{"Persson kappa 1.60", {s_all.front(), s_all.back()}, {}, "lines"};
+    PlotSeries bgt{"BGT kappa 2.51", {s_all.front(), s_all.back()}, {}, "lines"};
+    for (double x : persson.x) {
+      persson.y.push_back(kappa_persson() * x);
+      bgt.y.push_back(kappa_bgt() * x);
+    }
+    p.series.push_back(persson);
+    p.series.push_back(bgt);
+  }
+  write_svg_plot(path, p);
+}
+
+void plot_spectral_vs_fem(const nlohmann::json& rows, const std::string& path) {
+  PlotSpec p;
+  p.title = "Spectral layer against the FEM block at equal mean pressure";
+  p.xlabel = "rms slope";
+  p.ylabel = "A/A0 (spectral) / A/A0 (FEM) - 1, %";
+  PlotSeries s{"refine " + std::to_string(rows.empty() ? 0 : rows[0]["refine"].get<int>()), {}, {}, "linespoints"};
+  for (const auto& r : rows) {
+    s.x.push_back(r["rms_slope"].get<double>());
+    s.y.push_back(100 * r["area_difference"].get<double>());
+  }
+  p.series.push_back(s);
+  write_svg_plot(path, p);
 }
 
 }  // namespace wr::bench

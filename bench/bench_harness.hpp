@@ -52,4 +52,8 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
 // PETSc must be initialised; the spectral runs and progress lines on `rank` 0.
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank);
 
+// Charts of the results above (SVG through gnuplot, reports/plot.hpp).
+void plot_kappa(const nlohmann::json& rows, const std::string& path);
+void plot_spectral_vs_fem(const nlohmann::json& rows, const std::string& path);
+
 }  // namespace wr::bench

@@ -1,0 +1,72 @@
+#include "reports/plot.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "lib/io/atomic_output.hpp"
+
+namespace wr {
+namespace {
+
+// gnuplot string literal: single quotes, embedded quotes doubled.
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+void write_svg_plot(const std::string& path, const PlotSpec& spec) {
+  std::ostringstream g;
+  g.precision(17);
+  const std::string tmp = temporary_sibling(path) + ".svg";
+  g << "set terminal svg size 800,560 dynamic enhanced font 'sans,12' background rgb 'white'\n";
+  g << "set output " << quoted(tmp) << "\n";
+  g << "set title " << quoted(spec.title) << " noenhanced\n";
+  g << "set xlabel " << quoted(spec.xlabel) << " noenhanced\nset ylabel " << quoted(spec.ylabel) << " noenhanced\n";
+  g << "set grid\nset key top left noenhanced\n";
+  if (spec.logx) g << "set logscale x\n";
+  if (spec.logy) g << "set logscale y\n";
+  for (std::size_t s = 0; s < spec.series.size(); ++s) {
+    const PlotSeries& ps = spec.series[s];
+    if (ps.x.size() != ps.y.size()) throw std::runtime_error(path + ": series '" + ps.label + "' has x and y of different lengths");
+    g << "$d" << s << " << EOD\n";
+    for (std::size_t k = 0; k < ps.x.size(); ++k)
+      if (std::isfinite(ps.x[k]) && std::isfinite(ps.y[k])) g << ps.x[k] << " " << ps.y[k] << "\n";
+    g << "EOD\n";
+  }
+  g << "plot ";
+  for (std::size_t s = 0; s < spec.series.size(); ++s)
+    g << (s ? ", " : "") << "$d" << s << " using 1:2 with " << spec.series[s].style << " lw 2 title "
+      << quoted(spec.series[s].label);
+  g << "\nunset output\n";
+  const std::string script = temporary_sibling(path) + ".gp";
+  {
+    std::ofstream f(script);
+    f << g.str();
+    if (!f) throw std::runtime_error(path + ": cannot write the gnuplot script " + script);
+  }
+  const std::string cmd = "gnuplot " + quoted(script) + " 2>&1";
+  std::string output;
+  int status = -1;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char buf[512];
+    while (std::fgets(buf, sizeof buf, p)) output += buf;
+    status = pclose(p);
+  }
+  std::filesystem::remove(script);
+  if (status != 0 || !std::filesystem::exists(tmp)) {
+    std::filesystem::remove(tmp);
+    throw std::runtime_error(path + ": gnuplot failed (is Debian's gnuplot-nox installed?): " +
+                             output.substr(0, output.find('\n')));
+  }
+  commit_file(tmp, path);
+}
+
+}  // namespace wr
