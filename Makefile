@@ -25,11 +25,15 @@ bench: build
 	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3
 	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3 --files
 	$(BUILD_DIR)/bin/wetroad bench water --size 1024
+	$(BUILD_DIR)/bin/wetroad bench spectral --sizes 1024 2048
 
 validate: build
 	$(BUILD_DIR)/bin/wetroad bench summits --realizations 100
 	$(BUILD_DIR)/bin/wetroad bench coverage --seeds 10
 	OMP_NUM_THREADS=1 $(BUILD_DIR)/bin/wetroad bench hertz --meshes 32 64 128
+	$(BUILD_DIR)/bin/wetroad bench kappa --sizes 256 512 1024 --band 256 --seeds 4 --plot $(BUILD_DIR)/kappa.svg
+	OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 $(BUILD_DIR)/bin/wetroad bench spectral-vs-fem \
+	  --plot $(BUILD_DIR)/spectral-vs-fem.svg
 
 clean:
 	rm -rf $(BUILD_DIR)
