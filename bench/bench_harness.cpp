@@ -365,14 +365,15 @@ namespace {
 // Nyquist wavenumber of a `band_n` grid over the same period, sampled on n x n points.
 // Band-limited below every grid's Nyquist wavenumber, so the maps of one seed on different
 // grids sample one and the same continuous surface.
-HeightMap band_limited_surface(std::size_t n, std::size_t band_n, std::uint64_t seed, int threads) {
+HeightMap band_limited_surface(std::size_t n, std::size_t band_n, std::uint64_t seed, int threads,
+                               double period = 1e-2) {
   SynthParams p;
   p.nx = p.ny = n;
-  p.dx = 1e-2 / double(n);  // 1 cm period
+  p.dx = period / double(n);
   p.h0 = 1e-5;
   p.hurst = 0.7;
   p.q0_ratio = 5;
-  p.q1 = std::numbers::pi * double(band_n) / 1e-2;
+  p.q1 = std::numbers::pi * double(band_n) / period;
   p.seed = seed;
   p.threads = threads;
   return synthesize(p).map;
@@ -453,7 +454,8 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
   return rows;
 }
 
-nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads) {
+nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads,
+                              bool period_effect) {
   const ElasticBody body{1.0, 0.45};
   const std::vector<double> sigmas = {0.005, 0.01, 0.02, 0.05, 0.1, 0.2};
   nlohmann::json rows = nlohmann::json::array();
@@ -461,7 +463,10 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
     std::vector<double> area(sigmas.size(), 0.0);
     double kappa = 0, slope_mean = 0, wall = 0;
     for (int s = 0; s < seeds; ++s) {
-      const HeightMap m = band_limited_surface(n, band_n, 100 + std::uint64_t(s), threads);
+      // Grid effect: one period (1 cm), the band of a band_n grid, finer samplings. Period effect:
+      // the spacing of the first size kept, the period growing with n, q1 at each grid's Nyquist.
+      const double period = period_effect ? 1e-2 * double(n) / double(sizes.front()) : 1e-2;
+      const HeightMap m = band_limited_surface(n, period_effect ? n : band_n, 100 + std::uint64_t(s), threads, period);
       // sigma* uses the slope of the continuous band-limited surface (the same on every grid).
       const double slope = rms_slope_spectral(m, threads);
       slope_mean += slope / seeds;
@@ -481,7 +486,8 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
     std::fprintf(stderr, "\n");
     nlohmann::json curve = nlohmann::json::array();
     for (std::size_t k = 0; k < sigmas.size(); ++k) curve.push_back({{"sigma_star", sigmas[k]}, {"area_fraction", area[k]}});
-    rows.push_back({{"n", n}, {"band_n", band_n}, {"seeds", seeds}, {"rms_slope", slope_mean}, {"kappa", kappa},
+    rows.push_back({{"n", n}, {"band_n", period_effect ? n : band_n}, {"period_effect", period_effect},
+                    {"period", period_effect ? 1e-2 * double(n) / double(sizes.front()) : 1e-2}, {"seeds", seeds}, {"rms_slope", slope_mean}, {"kappa", kappa},
                     {"curve", curve}, {"wall_s", wall}});
   }
   return rows;
@@ -546,7 +552,9 @@ namespace wr::bench {
 
 void plot_kappa(const nlohmann::json& rows, const std::string& path) {
   PlotSpec p;
-  p.title = "Spectral half-space: A/A0 against sigma* on finer grids of one band-limited surface";
+  const bool period = !rows.empty() && rows[0].value("period_effect", false);
+  p.title = period ? "Spectral half-space: A/A0 against sigma*, period growing at fixed spacing"
+                   : "Spectral half-space: A/A0 against sigma* on finer grids of one band-limited surface";
   p.xlabel = "sigma* = p / (E* rms slope)";
   p.ylabel = "A/A0";
   p.logx = p.logy = true;

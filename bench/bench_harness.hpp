@@ -43,7 +43,10 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
 // spectral half-space on one band-limited self-affine surface per seed (H 0.7, q0 = 5 qL,
 // q1 = Nyquist of a band_n grid) sampled on each grid of `sizes`: the grid convergence of
 // A/A0 for a fixed continuous surface. Means over `seeds`. Progress on stderr.
-nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads);
+// `period_effect`: instead, the spacing of the first size is kept and the period grows with n
+// (q1 at every grid's Nyquist wavenumber, q0 = 5 qL of each period): the finite-size effect.
+nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads,
+                              bool period_effect);
 
 // Spectral against FEM on small and growing slopes (issue 5, bar 3): for each h0, a 100 x 100
 // self-affine scene (H 0.7, q0 = 2 qL, period 1 cm) pressed by the FEM block (uz proportional
