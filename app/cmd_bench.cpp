@@ -35,6 +35,9 @@ struct BenchCli {
   bool period_effect = false;
   std::vector<double> compare_h0 = {1.5e-5, 3e-5, 6e-5, 1e-4, 2e-4};
   int compare_refine = 1;
+  double accuracy_h0 = 3e-5;
+  std::vector<int> fem_refines = {1, 2};
+  std::vector<int> spectral_refines = {1, 2, 4, 8};
 };
 
 int run_speed(const BenchCli& c) {
@@ -232,6 +235,29 @@ int run_spectral_vs_fem(const BenchCli& c) {
   return 0;
 }
 
+int run_accuracy(const BenchCli& c) {
+  int argc = 1;
+  char name[] = "wetroad";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  PetscSession petsc(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto r = bench::accuracy(c.accuracy_h0, c.fem_refines, c.spectral_refines, rank);
+  if (rank != 0) return 0;
+  std::printf("speed against accuracy, one scene (100 x 100, 1 cm, h0 %.3g m, rms slope %.3f); reference: the finest FEM\n",
+              r["h0"].get<double>(), r["rms_slope"].get<double>());
+  std::printf("  %-9s %6s %9s %12s %10s %10s %10s\n", "model", "refine", "points", "p [Pa]", "A/A0", "error", "wall [s]");
+  for (const auto& q : r["points"])
+    std::printf("  %-9s %6d %9zu %12.4e %10.4f %9.2f%% %10.3g%s\n", q["model"].get<std::string>().c_str(),
+                q["refine"].get<int>(), q["nodes"].get<std::size_t>(), q["pressure"].get<double>(),
+                q["area_fraction"].get<double>(), 100 * q["error"].get<double>(), q["wall_s"].get<double>(),
+                q["converged"].get<bool>() ? "" : "  NOT CONVERGED");
+  if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
+  if (!c.plot.empty()) bench::plot_accuracy(r, c.plot);
+  return 0;
+}
+
 }  // namespace
 
 Command add_bench(CLI::App& root) {
@@ -276,13 +302,20 @@ Command add_bench(CLI::App& root) {
   vs->add_option("--refine", c->compare_refine, "face refinement of both models")->capture_default_str();
   vs->add_option("--json", c->json, "write the results as JSON");
   vs->add_option("--plot", c->plot, "draw the difference against rms slope (SVG)");
+  CLI::App* ac = b->add_subcommand("accuracy", "Speed against accuracy of every model on one scene (MPI ok; minutes).");
+  ac->add_option("--h0", c->accuracy_h0, "rms height of the scene, m")->capture_default_str();
+  ac->add_option("--fem-refines", c->fem_refines, "FEM face refinements (the last is the reference)")->capture_default_str();
+  ac->add_option("--spectral-refines", c->spectral_refines, "spectral grid refinements")->capture_default_str();
+  ac->add_option("--json", c->json, "write the results as JSON");
+  ac->add_option("--plot", c->plot, "draw wall time against error (SVG)");
   CLI::App* he = b->add_subcommand("hertz", "Hertz validation of the FEM contact solver over three meshes (MPI ok).");
   he->add_option("--meshes", c->hertz_meshes, "elements per face side")->capture_default_str();
   he->add_option("--radius", c->hertz_radius, "paraboloid radius of curvature, m")->capture_default_str();
   he->add_option("--uz", c->hertz_uz, "top displacement, m")->capture_default_str();
   he->add_option("--layers", c->hertz_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
   he->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su, wa, co, he, ss, ka, vs] {
+  return {b, [c, sp, su, wa, co, he, ss, ka, vs, ac] {
+            if (ac->parsed()) return run_accuracy(*c);
             if (vs->parsed()) return run_spectral_vs_fem(*c);
             if (he->parsed()) return run_hertz(*c);
             if (ss->parsed()) return run_spectral_speed(*c);

@@ -597,3 +597,85 @@ void plot_spectral_vs_fem(const nlohmann::json& rows, const std::string& path) {
 }
 
 }  // namespace wr::bench
+
+namespace wr::bench {
+
+nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const std::vector<int>& spectral_refines,
+                        int rank) {
+  // The scene of spectral_vs_fem: 100 x 100, 1 cm, H 0.7, q0 = 2 qL, seed 3, about a third of contact.
+  SynthParams sp;
+  sp.nx = sp.ny = 100;
+  sp.dx = 1e-4;
+  sp.h0 = h0;
+  sp.hurst = 0.7;
+  sp.q0_ratio = 2;
+  sp.seed = 3;
+  sp.threads = 1;
+  const HeightMap m = synthesize(sp).map;
+  const double slope = rms_slope_finite_difference(m, 1), a0 = m.lx() * m.ly();
+  nlohmann::json points = nlohmann::json::array();
+  // FEM first: the mean pressure of its coarsest run is the load every other model gets.
+  double pressure = 0;
+  for (int r : fem_refines) {
+    ContactTestOptions fo;
+    fo.uz = 2.5e-4 * h0 / 3e-5;
+    fo.normal_steps = 2;
+    fo.refine = r;
+    fo.tolerance = 1e-4;
+    fo.rms_slope = slope;
+    const double t0 = now();
+    const ContactTestResult fr = run_contact_test(m, fo);
+    const ContactStep& st = fr.steps.back();
+    if (pressure == 0) pressure = st.fz / a0;
+    points.push_back({{"model", "fem"}, {"refine", r}, {"nodes", fr.nodes}, {"pressure", st.fz / a0},
+                      {"area_fraction", st.area_fraction}, {"wall_s", now() - t0}, {"converged", !fr.failed}});
+    if (rank == 0) std::fprintf(stderr, "  fem refine %d: %.1f s\n", r, now() - t0);
+  }
+  if (rank == 0) {
+    for (int r : spectral_refines) {
+      SpectralTestOptions so;
+      so.pressure = pressure;
+      so.steps = 2;
+      so.body = ElasticBody{1.0, 0.45, m.lx()};
+      so.rms_slope = slope;
+      so.solver.threads = 1;
+      const double t0 = now();
+      const HeightMap fine = resample_triangulated(m, r);
+      const SpectralTestResult res = run_spectral_contact_test(fine, so);
+      points.push_back({{"model", "spectral"}, {"refine", r}, {"nodes", fine.size()}, {"pressure", pressure},
+                        {"area_fraction", res.steps.back().area_fraction}, {"wall_s", now() - t0},
+                        {"converged", !res.failed}});
+    }
+    const double t0 = now();
+    const double sigma = pressure / (1.0 / (1 - 0.45 * 0.45) * slope);
+    points.push_back({{"model", "analytic"}, {"refine", 0}, {"nodes", 0}, {"pressure", pressure},
+                      {"area_fraction", persson_area_fraction(sigma)}, {"wall_s", std::max(now() - t0, 1e-7)},
+                      {"converged", true}});
+    // The reference: the finest FEM (the last in the list); errors of A/A0 against it.
+    double ref = 0;
+    for (const auto& p : points)
+      if (p["model"] == "fem") ref = p["area_fraction"].get<double>();
+    for (auto& p : points) p["error"] = std::abs(p["area_fraction"].get<double>() / ref - 1);
+  }
+  return {{"h0", h0}, {"rms_slope", slope}, {"reference", "finest FEM"}, {"points", points}};
+}
+
+void plot_accuracy(const nlohmann::json& result, const std::string& path) {
+  PlotSpec p;
+  p.title = "A/A0 of one scene: wall time against the error to the finest FEM";
+  p.xlabel = "wall time, s";
+  p.ylabel = "|A/A0 / A/A0(finest FEM) - 1|";
+  p.logx = p.logy = true;
+  for (const char* model : {"analytic", "spectral", "fem"}) {
+    PlotSeries s{model, {}, {}, "linespoints"};
+    for (const auto& q : result["points"])
+      if (q["model"] == model && q["error"].get<double>() > 0) {
+        s.x.push_back(q["wall_s"].get<double>());
+        s.y.push_back(q["error"].get<double>());
+      }
+    if (!s.x.empty()) p.series.push_back(s);
+  }
+  write_svg_plot(path, p);
+}
+
+}  // namespace wr::bench

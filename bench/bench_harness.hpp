@@ -55,6 +55,14 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
 // PETSc must be initialised; the spectral runs and progress lines on `rank` 0.
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank);
 
+// Speed against accuracy on one scene (issue 5, bar 5): the spectral_vs_fem scene at h0, the
+// FEM at each refine (the coarsest one's mean pressure is every model's load), the spectral
+// layer at each refine, the analytic model; A/A0 and wall time per point, and the error of
+// A/A0 against the finest FEM. PETSc must be initialised; spectral and analytic on `rank` 0.
+nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const std::vector<int>& spectral_refines,
+                        int rank);
+void plot_accuracy(const nlohmann::json& result, const std::string& path);
+
 // Charts of the results above (SVG through gnuplot, reports/plot.hpp).
 void plot_kappa(const nlohmann::json& rows, const std::string& path);
 void plot_spectral_vs_fem(const nlohmann::json& rows, const std::string& path);
