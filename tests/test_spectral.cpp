@@ -131,6 +131,36 @@ TEST(SpectralNormal, StagnationIsDetectedAndReported) {
   EXPECT_FALSE(stagnated({8, 4, 2, 1}, 2));
 }
 
+// Threads change neither the reductions (fixed chunks, summed in order) nor the answer beyond
+// the solver's tolerance.
+TEST(SpectralNormal, SameAnswerOnOneAndTwoThreads) {
+  const std::size_t n = 512;  // large enough for threaded passes (64k points per chunk)
+  HeightMap m(n, n, 1e-5, 1e-5);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i)
+      m(i, j) = 1e-6 * (std::cos(2 * pi * 3 * double(i) / double(n) + 0.3) * std::cos(2 * pi * 5 * double(j) / double(n)) +
+                        0.5 * std::sin(2 * pi * 17 * double(i + 2 * j) / double(n)) +
+                        0.25 * std::cos(2 * pi * 41 * double(3 * i + j) / double(n)));
+  SpectralOptions opt;
+  opt.tolerance = 1e-10;
+  SpectralNormalResult r[2];
+  std::vector<double> p[2];
+  for (int t = 0; t < 2; ++t) {
+    SpectralNormalContact solver(m, ElasticBody{1.0, 0.45}, t + 1);
+    opt.threads = t + 1;
+    r[t] = solver.solve_load(2e-3, opt);
+    ASSERT_TRUE(r[t].converged) << r[t].message;
+    p[t] = solver.pressure();
+  }
+  EXPECT_NEAR(r[1].area_fraction, r[0].area_fraction, 2.0 / double(n * n));
+  double worst = 0, peak = 0;
+  for (std::size_t k = 0; k < n * n; ++k) {
+    worst = std::max(worst, std::abs(p[1][k] - p[0][k]));
+    peak = std::max(peak, p[0][k]);
+  }
+  EXPECT_LT(worst / peak, 1e-6);
+}
+
 // Displacement control on a layer agrees with load control at the load it produces.
 TEST(SpectralNormal, DisplacementAndLoadControlAgreeOnALayer) {
   const std::size_t n = 128;
