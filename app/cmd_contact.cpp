@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <chrono>
 #include <limits>
 #include <memory>
@@ -119,6 +120,18 @@ int report_failure(const ContactCli& c, const std::vector<ContactStep>& steps, c
   std::fprintf(stderr, "\n  the %zu finished steps are kept%s\n", steps.size() - 1,
                c.json.empty() ? "" : (" in " + c.json + " (status \"failed\")").c_str());
   return 3;
+}
+
+// Rank and size of an mpirun launch, read from the launcher's environment (the analytic and
+// spectral models do not initialise MPI: they run on threads).
+std::pair<int, int> launch_rank_and_size() {
+  auto get = [](const char* a, const char* b) {
+    const char* v = std::getenv(a);
+    if (!v) v = std::getenv(b);
+    return v ? std::atoi(v) : -1;
+  };
+  const int rank = get("OMPI_COMM_WORLD_RANK", "PMI_RANK"), size = get("OMPI_COMM_WORLD_SIZE", "PMI_SIZE");
+  return {std::max(rank, 0), std::max(size, 1)};
 }
 
 // The model that runs, its validity checks, and the same as JSON for every output.
@@ -304,6 +317,13 @@ int run_contact(ContactCli c) {
     if (!choice.found) throw InputError("--model auto", "no model passes its validity checks:" + why);
     model = choice.model;
     if (!c.quiet) std::fprintf(stderr, "model auto: %s, the cheapest model whose checks pass:%s\n", model_name(model), why.c_str());
+  }
+  if (model != ContactModel::fem) {
+    const auto [rank, size] = launch_rank_and_size();
+    if (rank > 0) return 0;  // one process does the work (on threads); the others idle
+    if (size > 1 && !c.quiet)
+      std::fprintf(stderr, "note: the %s model runs on threads in one process; %d MPI ranks idle\n", model_name(model),
+                   size - 1);
   }
   Validity validity{model, validity_checks(model, req), {}};
   validity.json = validity_json(model, validity.checks, c.model == "auto" ? "auto" : "user");
