@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/contact/model_ladder.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
@@ -74,6 +75,33 @@ double parse_thickness(const std::string& text, double block_height) {
   }
   if (used != text.size() || !(t > 0)) throw InputError("--thickness", "must be a length > 0 in m, or inf");
   return t;
+}
+
+// The area-load fits (eq. 5.4 quartic, eq. 3.179 YAM with the quartic's kappa) over the
+// converged normal steps, when there are at least four; null otherwise.
+nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool talk) {
+  std::vector<double> s, a;
+  for (const auto& st : steps)
+    if (st.converged && st.ux == 0 && st.sigma_star > 0) {
+      s.push_back(st.sigma_star);
+      a.push_back(st.area_fraction);
+    }
+  if (s.size() < 4) return nullptr;
+  try {
+    const QuarticAreaFit q = fit_quartic_area(s, a);
+    nlohmann::json j = {{"quartic", {{"Pi", q.pi}, {"Omega", q.omega}, {"Lambda", q.lambda}, {"kappa", q.kappa},
+                                     {"r2", q.r2}, {"eps_1e4", 1e4 * (1 - q.r2)}}}};
+    if (q.kappa > 0) {
+      const YamFit y = fit_yam(s, a, q.kappa);
+      j["yam"] = {{"kappa", y.kappa}, {"beta", y.beta}, {"mu", y.mu}, {"rms_error", y.rms_error}};
+    }
+    if (talk)
+      std::printf("  area-load fit (eq. 5.4): kappa %.4f, Lambda %.4g, Omega %.4g, Pi %.4g, 1 - R^2 = %.2e\n", q.kappa,
+                  q.lambda, q.omega, q.pi, 1 - q.r2);
+    return j;
+  } catch (const std::invalid_argument&) {
+    return nullptr;
+  }
 }
 
 void print_step_header() {
@@ -276,6 +304,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
                             {"provenance", prov.to_json()}};
   const ContactStep* peak = peak_friction(r.steps);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
+  j["area_load_fit"] = area_load_fit_json(r.steps, talk);
   write_contact_files(c, j, r.steps, r.nx, r.ny, r.spacing, prov);
   if (r.failed)
     return report_failure(c, r.steps, o.shear ? "relative change per geometry iteration" : "Polonsky-Keer error per iteration");
@@ -407,6 +436,7 @@ int run_contact(ContactCli c) {
                       {"provenance", prov.to_json()}};
   const ContactStep* peak = peak_friction(r.steps);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
+  j["area_load_fit"] = area_load_fit_json(r.steps, talk);
   if (rank == 0) write_contact_files(c, j, r.steps, r.face_nx, r.face_ny, r.face_spacing, prov);
   if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
   if (r.failed) return rank == 0 ? report_failure(c, r.steps, "relative change per Signorini iteration") : 3;

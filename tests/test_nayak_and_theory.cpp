@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/contact/model_ladder.hpp"
 #include "lib/analytic/nayak_summits.hpp"
@@ -93,6 +94,38 @@ TEST(ModelLadder, AutoPicksTheCheapestValidModel) {
   EXPECT_EQ(choose_model(r).model, ContactModel::fem);
   EXPECT_THROW(parse_model("auto"), std::invalid_argument);
   EXPECT_EQ(parse_model("spectral"), ContactModel::spectral);
+}
+
+}  // namespace
+}  // namespace wr
+
+namespace wr {
+namespace {
+
+// The quartic of eq. 5.4 through exact quartic data: the coefficients back, R^2 = 1; through a
+// YAM curve (eq. 3.179): the YAM fit recovers beta and mu for the given kappa.
+TEST(AreaLoadFit, QuarticAndYamRecoverTheirParameters) {
+  std::vector<double> s, a;
+  for (int k = 1; k <= 10; ++k) {
+    const double x = 0.05 * k;
+    s.push_back(x);
+    a.push_back(-0.3 * std::pow(x, 4) + 0.9 * std::pow(x, 3) - 1.2 * x * x + 2.1 * x);
+  }
+  const QuarticAreaFit q = fit_quartic_area(s, a);
+  EXPECT_NEAR(q.kappa, 2.1, 1e-9);
+  EXPECT_NEAR(q.lambda, -1.2, 1e-8);
+  EXPECT_NEAR(q.omega, 0.9, 1e-7);
+  EXPECT_NEAR(q.pi, -0.3, 1e-7);
+  EXPECT_NEAR(q.r2, 1.0, 1e-12);
+  std::vector<double> y;
+  for (double x : s) y.push_back(yam_area_fraction(x, 2.3, 0.8, -1.5));
+  const YamFit f = fit_yam(s, y, 2.3);
+  EXPECT_NEAR(f.beta, 0.8, 1e-3);
+  EXPECT_NEAR(f.mu, -1.5, 1e-3);
+  EXPECT_LT(f.rms_error, 1e-6);
+  // Low pressure: YAM tends to kappa sigma*.
+  EXPECT_NEAR(yam_area_fraction(1e-6, 2.3, 0.8, -1.5) / (2.3e-6), 1.0, 1e-6);
+  EXPECT_THROW(fit_quartic_area({0.1, 0.2}, {0.2, 0.4}), std::invalid_argument);
 }
 
 }  // namespace
