@@ -477,7 +477,7 @@ Command add_contact(CLI::App& root) {
   s->add_option("--wet", c->wet, "wet surface from `wetroad fill` (used as the obstacle instead)");
   s->add_option("--problem", c->problem, "normal (Problem A) or shear (Problem B)")->capture_default_str();
   s->add_option("--uz", c->opt.uz, "final downward displacement of the top face, m");
-  s->add_option("--pressure", c->pressure, "spectral model: final mean pressure, Pa (load control; instead of --uz)");
+  s->add_option("--pressure", c->pressure, "analytic and spectral models: final mean pressure, Pa (load control; instead of --uz)");
   s->add_option("--thickness", c->thickness,
                 "spectral model: layer thickness in m, or inf for a half-space (default: the block height)");
   s->add_option("--spectral-tol", c->spectral_tol,
@@ -496,13 +496,13 @@ Command add_contact(CLI::App& root) {
       ->capture_default_str();
   s->add_option("--E", c->opt.young, "Young's modulus, Pa (forces scale with it)")->capture_default_str();
   s->add_option("--nu", c->opt.poisson, "Poisson's ratio")->capture_default_str();
-  s->add_option("--damping", c->opt.damping, "Signorini correction damping alpha_c")->capture_default_str();
+  s->add_option("--damping", c->opt.damping, "damping alpha_c of the geometry iteration (fem Signorini, spectral shear)")->capture_default_str();
   s->add_option("--max-penetration", c->opt.max_penetration,
                  "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "
                  "negative: no check)");
   s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
       ->capture_default_str();
-  s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step")
+  s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step (fem; spectral shear)")
       ->capture_default_str();
   s->add_option("--max-iterations", c->max_iterations,
                  "iterations allowed per step (default: fem 300 Signorini iterations; spectral 5000 CG iterations, or 200 "
