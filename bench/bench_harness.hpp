@@ -56,7 +56,7 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank);
 
 // Speed against accuracy on one scene (issue 5, bar 5): the spectral_vs_fem scene at h0, the
-// FEM at each refine (the coarsest one's mean pressure is every model's load), the spectral
+// FEM at each refine (the finest one's mean pressure is the other models' load), the spectral
 // layer at each refine, the analytic model; A/A0 and wall time per point, and the error of
 // A/A0 against the finest FEM. PETSc must be initialised; spectral and analytic on `rank` 0.
 nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const std::vector<int>& spectral_refines,
