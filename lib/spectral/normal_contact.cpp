@@ -78,7 +78,7 @@ struct SpectralNormalContact::Impl {
   SpectralNormalResult solve(bool load_control, double target, const SpectralOptions& opt);
 
   // Final gap of the returned pressure and the summary numbers.
-  void summarise(bool load_control, double d, SpectralNormalResult& res) {
+  void summarise(double d, SpectralNormalResult& res) {
     update_w();
     double sum_p = 0, sum_g = 0, pen = 0, cgap = 0;
     std::size_t nc = 0;
@@ -93,7 +93,6 @@ struct SpectralNormalContact::Impl {
       }
       sum_g += g[k];
     }
-    (void)load_control;
     res.mean_pressure = sum_p / double(n);
     res.approach = d;
     res.area_fraction = double(nc) / double(n);
@@ -186,7 +185,6 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
   const auto t0 = std::chrono::steady_clock::now();
   SpectralNormalResult res;
   const double nd = double(n);
-  const int th = threads;
   double d = load_control ? 0.0 : target;  // the approach (found by load control)
 
   // Start: the previous solution (rescaled to the new load) or, cold, a uniform pressure
@@ -214,7 +212,6 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
   int since_full = 0;
   int last_admit = -1000;
   std::fill(t.begin(), t.end(), 0.0);
-  (void)th;
   for (int it = 0; it < opt.max_iterations; ++it) {
     res.iterations = it + 1;
     // Incremental updates of w accumulate rounding: recompute it regularly.
@@ -335,7 +332,7 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
   if (!res.converged && res.message.empty())
     res.message = "spectral normal contact did not converge in " + std::to_string(opt.max_iterations) +
                   " iterations (last error " + (res.history.empty() ? "-" : std::to_string(res.history.back())) + ")";
-  summarise(load_control, d, res);
+  summarise(d, res);
   res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

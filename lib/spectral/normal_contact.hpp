@@ -11,13 +11,17 @@
 // This is the minimum of the convex energy 1/2 p.Cp - p.(d + z_o) over p >= 0, solved by the
 // constrained conjugate-gradient method of Polonsky & Keer (Wear 231, 1999): CG restricted to
 // the points in contact, projection onto p >= 0, re-admission of penetrating points with a
-// restart of the conjugate directions. Load control (the mean pressure given, d the Lagrange
-// multiplier of that constraint) works for the half-space and the layer; displacement control
-// (d given) needs a bounded mean compliance, i.e. a layer.
+// restart of the conjugate directions. Two changes make it scale: the residual is
+// preconditioned by R C^-1 R^T on the contact set (Vollebregt, JOTA 2014; exact at full
+// contact), and penetrating points are admitted in batches (every `admit_every` iterations)
+// so that CG keeps its directions in between. Load control (the mean pressure given, d the
+// Lagrange multiplier of that constraint) works for the half-space and the layer;
+// displacement control (d given) needs a bounded mean compliance, i.e. a layer.
 //
 // Convergence (Polonsky-Keer's criterion): the relative l1 change of the pressure in one
-// iteration, sum |p_k+1 - p_k| / sum p_k+1, below `tolerance`. The residual of the
-// complementarity conditions is reported beside it.
+// iteration, sum |p_k+1 - p_k| / sum p_k+1, below `tolerance`, with no penetrating point left
+// waiting for admission. The residual of the complementarity conditions is reported beside it
+// (contact_gap, max_penetration). An error that stops decreasing ends the solve (stagnated).
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,7 +40,7 @@ struct SpectralOptions {
   int max_iterations = 5000;  // CG iterations per solve
   std::size_t stagnation_window = 100;  // stop when the error has not halved over two windows
   int admit_every = 8;        // iterations between admissions of penetrating points (1: Polonsky-Keer)
-  int threads = 0;            // FFT threads (0: all hardware threads)
+  int threads = 0;            // FFT threads (0: all hardware threads); read where a solver is built
 };
 
 struct SpectralNormalResult {
