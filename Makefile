@@ -34,6 +34,8 @@ validate: build
 	$(BUILD_DIR)/bin/wetroad bench kappa --sizes 256 512 1024 --band 256 --seeds 4 --plot $(BUILD_DIR)/kappa.svg
 	OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 $(BUILD_DIR)/bin/wetroad bench spectral-vs-fem \
 	  --plot $(BUILD_DIR)/spectral-vs-fem.svg
+	OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 $(BUILD_DIR)/bin/wetroad bench accuracy \
+	  --fem-refines 1 2 3 --spectral-refines 1 2 3 4 8 --plot $(BUILD_DIR)/accuracy.svg
 
 clean:
 	rm -rf $(BUILD_DIR)
