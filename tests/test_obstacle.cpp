@@ -85,5 +85,32 @@ TEST(Obstacle, FarObstacleIsNotFound) {
   EXPECT_TRUE(o.cast(Vec3{1e-4, 1e-4, 1.0}, Vec3{0, 0, -1}, 1.5));
 }
 
+// Resampling onto a finer lattice keeps the triangulated surface: the lattice heights come
+// back at every refine-th sample, and inside a triangle the value is the plane through its
+// three corners (here checked at the cell centre of the lower-left triangle's diagonal and at
+// a point of the upper triangle). Periodic in, periodic out.
+TEST(Obstacle, ResamplingKeepsTheTriangulatedSurface) {
+  HeightMap m(4, 3, 1e-3, 2e-3);
+  for (std::size_t j = 0; j < 3; ++j)
+    for (std::size_t i = 0; i < 4; ++i) m(i, j) = 1e-4 * double((i * 7 + j * 3) % 5);
+  const HeightMap f = resample_triangulated(m, 4);
+  ASSERT_EQ(f.nx, 16u);
+  ASSERT_EQ(f.ny, 12u);
+  EXPECT_DOUBLE_EQ(f.dx, 2.5e-4);
+  EXPECT_TRUE(f.periodic);
+  for (std::size_t j = 0; j < 3; ++j)
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(f(4 * i, 4 * j), m(i, j), 1e-15);
+  // Cell (0, 0): lower triangle (u >= v) through (0,0), (1,0), (1,1); at u = 0.5, v = 0.25:
+  const double lower = m(0, 0) + 0.5 * (m(1, 0) - m(0, 0)) + 0.25 * (m(1, 1) - m(1, 0));
+  EXPECT_NEAR(f(2, 1), lower, 1e-15);
+  // Upper triangle (u < v) through (0,0), (1,1), (0,1); at u = 0.25, v = 0.75:
+  const double upper = m(0, 0) + 0.75 * (m(0, 1) - m(0, 0)) + 0.25 * (m(1, 1) - m(0, 1));
+  EXPECT_NEAR(f(1, 3), upper, 1e-15);
+  // The last cell wraps to the first column and row.
+  const double wrap = m(3, 2) + 0.5 * (m(0, 2) - m(3, 2)) + 0.5 * (m(0, 0) - m(0, 2));
+  EXPECT_NEAR(f(14, 10), wrap, 1e-15);
+  EXPECT_THROW(resample_triangulated(m, 0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace wr
