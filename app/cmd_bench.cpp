@@ -1,4 +1,7 @@
 // `wetroad bench speed|summits`: benchmarks and long validations (bench/bench_harness.hpp).
+#include <mpi.h>
+
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -6,9 +9,7 @@
 #include "app/commands.hpp"
 #include "bench/bench_harness.hpp"
 #include "lib/fem/petsc_session.hpp"
-#include <mpi.h>
 #include "lib/io/atomic_output.hpp"
-#include <cmath>
 
 namespace wr::app {
 namespace {
@@ -98,14 +99,24 @@ int run_water(const BenchCli& c) {
   return 0;
 }
 
-int run_hertz(const BenchCli& c) {
+// PETSc and MPI for the benches that run the FEM (mpirun -np N ok), with this process's rank.
+struct FemBenchSession {
   int argc = 1;
-  char name[] = "wetroad";
-  char* args[] = {name, nullptr};
+  char name[8] = "wetroad";
+  char* args[2] = {name, nullptr};
   char** argv = args;
-  PetscSession petsc(&argc, &argv);
-  int rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  PetscSession petsc{&argc, &argv};
+  int rank = rank_of_world();
+  static int rank_of_world() {
+    int r = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+    return r;
+  }
+};
+
+int run_hertz(const BenchCli& c) {
+  const FemBenchSession session;
+  const int rank = session.rank;
   const auto rows = bench::hertz(c.hertz_meshes, c.hertz_radius, c.hertz_uz, c.hertz_layers, rank);
   if (rank != 0) return 0;
   std::printf("Hertz: paraboloid R = %g m pressed %g m into a 20 mm block (E = 1, nu = 0.45), %d layers per level\n",
@@ -211,13 +222,8 @@ int run_kappa(const BenchCli& c) {
 }
 
 int run_spectral_vs_fem(const BenchCli& c) {
-  int argc = 1;
-  char name[] = "wetroad";
-  char* args[] = {name, nullptr};
-  char** argv = args;
-  PetscSession petsc(&argc, &argv);
-  int rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const FemBenchSession session;
+  const int rank = session.rank;
   const auto rows = bench::spectral_vs_fem(c.compare_h0, c.compare_refine, rank);
   if (rank != 0) return 0;
   std::printf("spectral layer against the FEM block at equal mean pressure, refine %d (100 x 100, 1 cm, H 0.7)\n",
@@ -236,13 +242,8 @@ int run_spectral_vs_fem(const BenchCli& c) {
 }
 
 int run_accuracy(const BenchCli& c) {
-  int argc = 1;
-  char name[] = "wetroad";
-  char* args[] = {name, nullptr};
-  char** argv = args;
-  PetscSession petsc(&argc, &argv);
-  int rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const FemBenchSession session;
+  const int rank = session.rank;
   const auto r = bench::accuracy(c.accuracy_h0, c.fem_refines, c.spectral_refines, rank);
   if (rank != 0) return 0;
   std::printf("speed against accuracy, one scene (100 x 100, 1 cm, h0 %.3g m, rms slope %.3f); reference: the finest FEM\n",

@@ -104,6 +104,21 @@ nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool ta
   }
 }
 
+// The curve's summaries in the JSON: the shear test's peak (static friction) and the area-load
+// fits of the normal steps. Returns the peak step (nullptr without one).
+const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<ContactStep>& steps, bool talk) {
+  const ContactStep* peak = peak_friction(steps);
+  if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - steps.data()) + 1}};
+  j["area_load_fit"] = area_load_fit_json(steps, talk);
+  return peak;
+}
+
+void print_peak(const ContactStep* peak, const std::vector<ContactStep>& steps) {
+  if (peak)
+    std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
+                peak->ux, int(peak - steps.data()) + 1);
+}
+
 void print_step_header() {
   std::printf("  %4s %10s %10s %11s %11s %8s %8s %9s %10s %10s %5s %6s %8s\n", "step", "uz [m]", "ux [m]", "Fz [N]",
               "Fx [N]", "mu", "A/A0", "sigma*", "sep [m]", "pen [m]", "sig", "lin", "wall [s]");
@@ -302,17 +317,13 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
                             {"steps", steps},
                             {"validity", validity.json},
                             {"provenance", prov.to_json()}};
-  const ContactStep* peak = peak_friction(r.steps);
-  if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
-  j["area_load_fit"] = area_load_fit_json(r.steps, talk);
+  const ContactStep* peak = add_curve_summaries(j, r.steps, talk);
   write_contact_files(c, j, r.steps, r.nx, r.ny, r.spacing, prov);
   if (r.failed)
     return report_failure(c, r.steps, o.shear ? "relative change per geometry iteration" : "Polonsky-Keer error per iteration");
   if (talk) {
     std::printf("  %zu grid points, %d FFT thread(s)\n", r.nx * r.ny, c.threads > 0 ? c.threads : hardware_threads());
-    if (peak)
-      std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
-                  peak->ux, int(peak - r.steps.data()) + 1);
+    print_peak(peak, r.steps);
     std::printf("  timing [s]: setup %.2f  solve %.2f  total %.2f\n", r.wall_setup, t_sol, r.wall_s);
   }
   return 0;
@@ -434,18 +445,14 @@ int run_contact(ContactCli c) {
                       {"steps", steps},
                       {"validity", validity.json},
                       {"provenance", prov.to_json()}};
-  const ContactStep* peak = peak_friction(r.steps);
-  if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - r.steps.data()) + 1}};
-  j["area_load_fit"] = area_load_fit_json(r.steps, talk);
+  const ContactStep* peak = add_curve_summaries(j, r.steps, talk);
   if (rank == 0) write_contact_files(c, j, r.steps, r.face_nx, r.face_ny, r.face_spacing, prov);
   if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
   if (r.failed) return rank == 0 ? report_failure(c, r.steps, "relative change per Signorini iteration") : 3;
   if (talk) {
     std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s)\n",
                 r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks);
-    if (peak)
-      std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
-                  peak->ux, int(peak - r.steps.data()) + 1);
+    print_peak(peak, r.steps);
     std::printf("  timing [s]: setup %.2f  linearise %.2f  rotate %.2f  solve %.2f  total %.2f\n", r.wall_setup,
                 t_lin, t_rot, t_sol, r.wall_s);
   }

@@ -496,28 +496,41 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
 }  // namespace wr::bench
 
 namespace wr::bench {
+namespace {
+
+// The comparison scene of spectral_vs_fem and accuracy: 100 x 100, 0.1 mm spacing (1 cm
+// period), H 0.7, q0 = 2 qL, seed 3.
+HeightMap comparison_scene(double h0) {
+  SynthParams sp;
+  sp.nx = sp.ny = 100;
+  sp.dx = 1e-4;
+  sp.h0 = h0;
+  sp.hurst = 0.7;
+  sp.q0_ratio = 2;
+  sp.seed = 3;
+  sp.threads = 1;
+  return synthesize(sp).map;
+}
+
+// Its FEM press: about a third of contact whatever h0 (uz proportional to h0), two steps.
+ContactTestOptions comparison_press(double h0, int refine, double slope) {
+  ContactTestOptions fo;
+  fo.uz = 2.5e-4 * h0 / 3e-5;
+  fo.normal_steps = 2;
+  fo.refine = refine;
+  fo.tolerance = 1e-4;
+  fo.rms_slope = slope;
+  return fo;
+}
+
+}  // namespace
 
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank) {
   nlohmann::json rows = nlohmann::json::array();
   for (double h0 : h0s) {
-    // The comparison scene: 100 x 100, 0.1 mm spacing (1 cm period), H 0.7, q0 = 2 qL, seed 3,
-    // pressed to about a third of contact whatever h0 (uz proportional to h0).
-    SynthParams sp;
-    sp.nx = sp.ny = 100;
-    sp.dx = 1e-4;
-    sp.h0 = h0;
-    sp.hurst = 0.7;
-    sp.q0_ratio = 2;
-    sp.seed = 3;
-    sp.threads = 1;
-    const HeightMap m = synthesize(sp).map;
+    const HeightMap m = comparison_scene(h0);
     const double slope = rms_slope_finite_difference(m, 1);
-    ContactTestOptions fo;
-    fo.uz = 2.5e-4 * h0 / 3e-5;
-    fo.normal_steps = 2;
-    fo.refine = refine;
-    fo.tolerance = 1e-4;
-    fo.rms_slope = slope;
+    const ContactTestOptions fo = comparison_press(h0, refine, slope);
     double t0 = now();
     const ContactTestResult fr = run_contact_test(m, fo);
     const double fem_wall = now() - t0;
@@ -602,16 +615,7 @@ namespace wr::bench {
 
 nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const std::vector<int>& spectral_refines,
                         int rank) {
-  // The scene of spectral_vs_fem: 100 x 100, 1 cm, H 0.7, q0 = 2 qL, seed 3, about a third of contact.
-  SynthParams sp;
-  sp.nx = sp.ny = 100;
-  sp.dx = 1e-4;
-  sp.h0 = h0;
-  sp.hurst = 0.7;
-  sp.q0_ratio = 2;
-  sp.seed = 3;
-  sp.threads = 1;
-  const HeightMap m = synthesize(sp).map;
+  const HeightMap m = comparison_scene(h0);
   const double slope = rms_slope_finite_difference(m, 1), a0 = m.lx() * m.ly();
   nlohmann::json points = nlohmann::json::array();
   // FEM first (displacement-controlled: its mean pressure moves a little with the mesh); the
@@ -619,12 +623,7 @@ nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const st
   // meet the reference at equal load.
   double pressure = 0;
   for (int r : fem_refines) {
-    ContactTestOptions fo;
-    fo.uz = 2.5e-4 * h0 / 3e-5;
-    fo.normal_steps = 2;
-    fo.refine = r;
-    fo.tolerance = 1e-4;
-    fo.rms_slope = slope;
+    const ContactTestOptions fo = comparison_press(h0, r, slope);
     const double t0 = now();
     const ContactTestResult fr = run_contact_test(m, fo);
     const ContactStep& st = fr.steps.back();

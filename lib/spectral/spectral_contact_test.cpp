@@ -57,7 +57,9 @@ class GeometryFollowing {
     st.converged = false;
     for (int it = 0; it < opt_.max_geometry_iterations; ++it) {
       st.signorini_iterations = it + 1;
-      sample_all();
+      // The slopes under the face: sampled after the last update (below), so only the first
+      // iteration samples here.
+      if (it == 0) sample_all();
       const std::vector<double>& p = solver_.pressure();
       for (std::size_t k = 0; k < n_; ++k) {
         tx[k] = -p[k] * ssx[k];
@@ -96,8 +98,8 @@ class GeometryFollowing {
         break;
       }
     }
-    // Forces at the settled geometry: the far face holds Fx = sum p dh/dx dA.
-    sample_all();
+    // Forces at the settled geometry (the slopes of the last sampling): the far face holds
+    // Fx = sum p dh/dx dA.
     const std::vector<double>& p = solver_.pressure();
     double fx = 0, fy = 0;
     for (std::size_t k = 0; k < n_; ++k) {
