@@ -4,8 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <random>
+#include <sstream>
 
+#include "lib/core/big_buffer.hpp"
+#include "lib/core/fft.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/spectrum.hpp"
 
@@ -107,6 +113,37 @@ TEST(HeightStats, SkewnessAndKurtosisOfASinusoid) {
   for (int i = 0; i < 50; ++i) mean_abs += std::abs(std::sin(2 * kPi * i / 50.0)) / 50;
   EXPECT_NEAR(s.sa / (1e-4 * mean_abs), 1.0, 1e-12);
   EXPECT_NEAR(mean_abs, 2 / kPi, 2e-3);
+}
+
+
+// Measured plans compute the same transform as estimated ones (to rounding), are stored in the
+// wisdom file, and a transform from an external array equals one from the plan's own array.
+TEST(Fft, MeasuredPlansAgreeAndAreCached) {
+  const std::string wisdom = ::testing::TempDir() + "wetroad-test-wisdom";
+  std::remove(wisdom.c_str());
+  ::setenv("WETROAD_FFT_WISDOM", wisdom.c_str(), 1);
+  const std::size_t nx = 96, ny = 80;  // a size no other test plans
+  RealFft2d est(nx, ny, 1, nullptr, FftPlanning::estimate), mea(nx, ny, 1, nullptr, FftPlanning::measure);
+  ::unsetenv("WETROAD_FFT_WISDOM");
+  std::ifstream cached(wisdom);
+  std::stringstream text;
+  text << cached.rdbuf();
+  EXPECT_NE(text.str().find("fftw"), std::string::npos) << "no wisdom written to " << wisdom;
+  BigVector x(nx * ny);
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = std::sin(0.37 * double(k)) + 0.1 * double(k % 7);
+  std::copy(x.begin(), x.end(), est.real());
+  est.forward();
+  mea.forward_from(x.data());
+  double worst = 0, peak = 0;
+  for (std::size_t k = 0; k < ny * est.nxh(); ++k) {
+    worst = std::max(worst, std::abs(est.spectrum()[k] - mea.spectrum()[k]));
+    peak = std::max(peak, std::abs(est.spectrum()[k]));
+  }
+  EXPECT_LT(worst, 1e-12 * peak);
+  EXPECT_EQ(x[5], std::sin(0.37 * 5) + 0.1 * 5);  // the external input is left intact
+  mea.backward();
+  for (std::size_t k = 0; k < x.size(); k += 97) EXPECT_NEAR(mea.real()[k] / double(nx * ny), x[k], 1e-12);
+  std::remove(wisdom.c_str());
 }
 
 }  // namespace

@@ -20,7 +20,9 @@ struct SpectralNormalContact::Impl {
   std::vector<double> kernel;  // C(q) / n over the half spectrum (ny x nxh): FFTW is unnormalised
   std::vector<double> inverse_kernel;  // 1 / (C(q) n); 0 for the half-space's mean mode
   bool precondition = true;
-  std::vector<double> p, g, t, p_prev;
+  std::vector<double> p, g;
+  BigVector t;                       // CG direction; FFTW transforms it in place of r (same alignment)
+  std::vector<unsigned char> in_contact;  // p > 0, kept beside p: a byte per point is cheap to stream
   // w = C p, z (preconditioned residual), r = C t: each transformed in place by its own FFT
   // plan on its own (page-aligned) array, so no convolution copies its input or output.
   BigVector w, z, r;
@@ -33,7 +35,7 @@ struct SpectralNormalContact::Impl {
   double c_last = 0, c_before = 0;
   int history_kind = -1, history_count = 0;  // 1: load control, 0: displacement control
   double top = 0;  // m, the original obstacle's highest point: z = 0 of the approach
-  void setup(const HeightMap& obstacle, double top, const ElasticBody& b, int th);
+  void setup(const HeightMap& obstacle, double top, const ElasticBody& b, int th, FftPlanning planning);
 
   // out = C * in (periodic convolution through the FFT).
   int threads = 0;
@@ -65,9 +67,15 @@ struct SpectralNormalContact::Impl {
   // The array of `f` <- (multiplier `by`) * itself, a periodic convolution.
   void convolve_in_place(RealFft2d& f, const std::vector<double>& by) {
     f.forward();
+    multiply_and_invert(f, by);
+  }
+  // The spectrum of `f` times `by`, transformed back into its array.
+  void multiply_and_invert(RealFft2d& f, const std::vector<double>& by) {
     std::complex<double>* s = f.spectrum();
     const std::size_t m = ny * f.nxh();
-    for (std::size_t k = 0; k < m; ++k) s[k] *= by[k];
+    parallel_chunks(m, std::clamp<std::size_t>(m >> 16, 1, 64), threads, [&](std::size_t, std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) s[k] *= by[k];
+    });
     f.backward();
   }
   void update_w() {  // w = C p
@@ -102,7 +110,8 @@ struct SpectralNormalContact::Impl {
   }
 };
 
-SpectralNormalContact::SpectralNormalContact(const HeightMap& obstacle, const ElasticBody& body, int threads)
+SpectralNormalContact::SpectralNormalContact(const HeightMap& obstacle, const ElasticBody& body, int threads,
+                                             FftPlanning planning)
     : impl_(std::make_unique<Impl>()) {
   check_body(body);
   if (obstacle.nx < 2 || obstacle.size() == 0) throw std::invalid_argument("obstacle needs at least 2 samples per row");
@@ -112,10 +121,11 @@ SpectralNormalContact::SpectralNormalContact(const HeightMap& obstacle, const El
     if (!std::isfinite(v)) throw std::invalid_argument("obstacle has non-finite heights (fill dropouts first)");
     top = std::max(top, v);
   }
-  impl_->setup(obstacle, top, body, threads);
+  impl_->setup(obstacle, top, body, threads, planning);
 }
 
-void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_height, const ElasticBody& b, int th) {
+void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_height, const ElasticBody& b, int th,
+                                        FftPlanning planning) {
   nx = obstacle.nx;
   ny = obstacle.ny;
   n = nx * ny;
@@ -125,9 +135,10 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
   zo.assign(obstacle.h.begin(), obstacle.h.end());
   for (double& v : zo) v -= top;
   for (auto* v : {&w, &z, &r}) v->assign(n, 0.0);
-  fft_w = std::make_unique<RealFft2d>(nx, ny, threads, w.data());
-  fft_z = std::make_unique<RealFft2d>(nx, ny, threads, z.data());
-  fft_r = std::make_unique<RealFft2d>(nx, ny, threads, r.data());
+  fft_w = std::make_unique<RealFft2d>(nx, ny, threads, w.data(), planning);
+  fft_z = std::make_unique<RealFft2d>(nx, ny, threads, z.data(), planning);
+  fft_r = std::make_unique<RealFft2d>(nx, ny, threads, r.data(), planning);
+  for (auto* v : {&w, &z, &r}) std::fill(v->begin(), v->end(), 0.0);  // measuring wrote into them
   const std::size_t nxh = fft_w->nxh();
   kernel.resize(ny * nxh);
   inverse_kernel.resize(ny * nxh);
@@ -142,7 +153,9 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
       inverse_kernel[j * nxh + i] = (std::isfinite(c) ? 1 / c : 0.0) / double(n);
     }
   }
-  for (auto* v : {&p, &g, &t, &p_prev}) v->assign(n, 0.0);
+  for (auto* v : {&p, &g}) v->assign(n, 0.0);
+  t.assign(n, 0.0);
+  in_contact.assign(n, 0);
 }
 
 
@@ -206,61 +219,77 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
   }
   have_solution = true;
 
+  for_each([&](std::size_t k) { in_contact[k] = p[k] > 0; });
   double g_old = 1.0;
   bool restart = true;
   bool w_current = false;  // w = C p holds (updated incrementally while no point changes state)
   int since_full = 0;
   int last_admit = -1000;
+  // The last step's load rescaling and step length, applied to p and w in the next
+  // iteration's first pass: every pass streams several grid-sized arrays through memory, which
+  // costs as much as the FFTs, so the passes are fused wherever the data flow allows.
+  double scale = 1.0, tau = 0.0;
   std::fill(t.begin(), t.end(), 0.0);
   for (int it = 0; it < opt.max_iterations; ++it) {
     res.iterations = it + 1;
-    // Incremental updates of w accumulate rounding: recompute it regularly.
-    if (!w_current || since_full >= 25) {
-      update_w();
+    // Gap; under load control its mean over the contact set is the approach. Incremental
+    // updates of w accumulate rounding: it is recomputed regularly.
+    const bool recompute = !w_current || since_full >= 25;
+    if (recompute) {
+      for_each([&](std::size_t k) { w[k] = p[k] *= scale; });
+      convolve_in_place(*fft_w, kernel);
+      ++res.fft_pairs;
       since_full = 0;
     }
-    // Gap; under load control its mean over the contact set is the approach.
     const auto gs = reduce<2>([&](std::size_t k, std::array<double, 2>& a) {
+      if (!recompute) {  // while no point changed state, p moved by exactly -tau t, so did w
+        p[k] *= scale;
+        w[k] = scale * (w[k] - tau * r[k]);
+      }
       g[k] = w[k] - d - zo[k];
-      if (p[k] > 0) {
+      if (in_contact[k]) {
         a[0] += g[k];
         a[1] += 1;
       }
     });
+    scale = 1.0;
     const double nc = gs[1];
     if (nc == 0) {  // displacement control below first contact: nothing carries load
       std::fill(p.begin(), p.end(), 0.0);
       res.converged = true;
       break;
     }
+    // The gaps used below are g - shift (the shifted approach d + shift); g itself is not rewritten.
     const double shift = load_control ? gs[0] / nc : 0.0;
     d += shift;
     // Preconditioned residual z = R C^-1 R^T g on the contact set (Vollebregt 2014): the
     // inverse compliance is diagonal in Fourier space, exact at full contact, and removes the
     // 1/q spread of the spectrum that makes plain CG take O(sqrt(N)) iterations per decade.
-    for_each([&](std::size_t k) {
-      g[k] -= shift;
-      z[k] = p[k] > 0 ? g[k] : 0.0;
-    });
-    if (precondition) convolve_in_place(*fft_z, inverse_kernel);
-    // One pass for the sum of z over the contact set and g.z; load control then shifts z to a
-    // zero sum (a load-neutral direction): g.(z - zshift) = g.z, since g sums to 0 there.
+    for_each([&](std::size_t k) { z[k] = in_contact[k] ? g[k] - shift : 0.0; });
+    if (precondition) {
+      convolve_in_place(*fft_z, inverse_kernel);
+      ++res.fft_pairs;
+    }
+    // The sum of z over the contact set and g.z; load control then shifts z to a zero sum (a
+    // load-neutral direction): g.(z - zshift) = g.z, since g - shift sums to 0 there.
     const auto zs = reduce<2>([&](std::size_t k, std::array<double, 2>& a) {
-      if (p[k] > 0) {
+      if (in_contact[k]) {
         a[0] += z[k];
-        a[1] += g[k] * z[k];
+        a[1] += (g[k] - shift) * z[k];
       }
     });
     const double zshift = load_control && precondition ? zs[0] / nc : 0.0;
     const double gz = zs[1];
     const double beta = restart ? 0.0 : gz / g_old;
     g_old = gz;
-    for_each([&](std::size_t k) { r[k] = t[k] = p[k] > 0 ? (z[k] - zshift) + beta * t[k] : 0.0; });
-    convolve_in_place(*fft_r, kernel);  // r = C t
+    for_each([&](std::size_t k) { t[k] = in_contact[k] ? (z[k] - zshift) + beta * t[k] : 0.0; });
+    fft_r->forward_from(t.data());  // r = C t, transformed straight from t
+    multiply_and_invert(*fft_r, kernel);
+    ++res.fft_pairs;
     // r is shifted to a zero mean over the contact set under load control (the approach
-    // absorbs the mean): (r - rshift).t = r.t - rshift sum t.
+    // absorbs the mean): (r - rshift).t = r.t - rshift sum t, and (g - shift).t likewise.
     const auto rs = reduce<4>([&](std::size_t k, std::array<double, 4>& a) {
-      if (p[k] > 0) {
+      if (in_contact[k]) {
         a[0] += r[k];
         a[1] += g[k] * t[k];
         a[2] += r[k] * t[k];
@@ -269,45 +298,42 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
     });
     const double rshift = load_control ? rs[0] / nc : 0.0;
     const double rt = rs[2] - rshift * rs[3];
-    const double tau = rt > 0 ? rs[1] / rt : 0.0;
+    tau = rt > 0 ? (rs[1] - shift * rs[3]) / rt : 0.0;
     // Step, projection onto p >= 0, re-admission of penetrating points (restarting CG).
     // Penetrating points join at most every `admit_every` iterations: each admission restarts
     // CG (Polonsky-Keer), and admitting at every iteration (their original scheme) keeps it
     // in steepest descent while the contact boundary settles (2x the iterations on 1024^2).
     const bool admit = (it - last_admit) >= std::max(opt.admit_every, 1);
     if (admit) last_admit = it;
-    const auto ps = reduce<4>([&](std::size_t k, std::array<double, 4>& a) {
-      p_prev[k] = p[k];
-      double v = p[k] > 0 ? p[k] - tau * t[k] : 0.0;
+    const auto ps = reduce<5>([&](std::size_t k, std::array<double, 5>& a) {
+      const double gk = g[k] - shift;
+      double v = in_contact[k] ? p[k] - tau * t[k] : 0.0;
       if (v < 0) {
         v = 0;
         a[1] += 1;  // a point left the contact
       }
-      if (v == 0 && g[k] < 0) {
+      if (v == 0 && gk < 0) {
         if (admit) {
-          v = -tau * g[k];
+          v = -tau * gk;
           a[2] += 1;  // a point (re-)entered
         } else {
           a[3] += 1;  // penetrating, waiting for the next admission
         }
       }
-      p[k] = v;
       a[0] += v;
+      a[4] += std::abs(v - p[k]);
+      p[k] = v;
+      in_contact[k] = v > 0;
     });
     const bool changed = ps[1] > 0 || ps[2] > 0;
     restart = ps[2] > 0;  // Polonsky-Keer: conjugacy is lost when points enter
     double total = ps[0];
-    const double scale = load_control && total > 0 ? target * nd / total : 1.0;
-    if (scale != 1.0) total = target * nd;
-    // While no point changed state, p moved by exactly -tau t (then scaled): so did w.
+    scale = load_control && total > 0 ? target * nd / total : 1.0;
     w_current = !changed;
-    const double change = reduce<1>([&](std::size_t k, std::array<double, 1>& a) {
-      p[k] *= scale;
-      a[0] += std::abs(p[k] - p_prev[k]);
-      if (w_current) w[k] = scale * (w[k] - tau * r[k]);
-    })[0];
     if (w_current) ++since_full;
-    const double err = total > 0 ? change / total : 0.0;
+    // The error is the relative l1 change sum |scale v - p_old| / sum scale v, bounded above by
+    // (sum |v - p_old| + |scale - 1| sum v) / (scale sum v): the scaling is applied later.
+    const double err = total > 0 ? (ps[4] + std::abs(scale - 1) * total) / (scale * total) : 0.0;
     res.history.push_back(err);
     if (err <= opt.tolerance && ps[3] == 0) {
       res.converged = true;
@@ -320,6 +346,7 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
       break;
     }
   }
+  if (scale != 1.0) for_each([&](std::size_t k) { p[k] *= scale; });
   if (res.converged) {
     if (history_kind != int(load_control)) history_count = 0;
     history_kind = int(load_control);

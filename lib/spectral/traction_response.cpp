@@ -8,15 +8,15 @@
 namespace wr {
 
 TractionResponse::TractionResponse(std::size_t nx, std::size_t ny, double lx, double ly, const ElasticBody& body,
-                                   int threads)
+                                   int threads, FftPlanning planning)
     : nx_(nx), ny_(ny), n_(nx * ny), mean_(shear_compliance_mean(body)) {
   check_body(body);
   if (body.half_space())
     throw std::invalid_argument("tangential loading needs a layer of finite thickness (the half-space's mean shear "
                                 "compliance is unbounded)");
-  fx_ = std::make_unique<RealFft2d>(nx, ny, threads);
-  fy_ = std::make_unique<RealFft2d>(nx, ny, threads);
-  fp_ = std::make_unique<RealFft2d>(nx, ny, threads);
+  fx_ = std::make_unique<RealFft2d>(nx, ny, threads, nullptr, planning);
+  fy_ = std::make_unique<RealFft2d>(nx, ny, threads, nullptr, planning);
+  fp_ = std::make_unique<RealFft2d>(nx, ny, threads, nullptr, planning);
   const std::size_t nxh = fx_->nxh();
   c_.resize(ny * nxh);
   const double qx0 = 2 * std::numbers::pi / lx, qy0 = 2 * std::numbers::pi / ly;

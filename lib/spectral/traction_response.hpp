@@ -18,7 +18,8 @@ namespace wr {
 class TractionResponse {
  public:
   // Throws std::invalid_argument for a half-space.
-  TractionResponse(std::size_t nx, std::size_t ny, double lx, double ly, const ElasticBody& body, int threads = 0);
+  TractionResponse(std::size_t nx, std::size_t ny, double lx, double ly, const ElasticBody& body, int threads = 0,
+                   FftPlanning planning = FftPlanning::measure);
 
   // ux, uy = (far_x, far_y) + the tangential displacements of the face; uz_coupling = the
   // normal displacement (into the body) caused by tx, ty.
