@@ -21,7 +21,7 @@ double hertz_force(double contact_radius, double radius, double e_star) {
   return 4 * e_star * contact_radius * contact_radius * contact_radius / (3 * radius);
 }
 
-HertzFit fit_hertz_pressure(const std::vector<double>& pressure, int nx, int ny, double h, double cx, double cy,
+HertzFit fit_hertz_pressure(std::span<const double> pressure, int nx, int ny, double h, double cx, double cy,
                             double a_guess, double inner) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int cnt = 0;

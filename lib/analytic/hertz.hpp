@@ -3,6 +3,7 @@
 // half-space (Johnson, Contact Mechanics, sec. 4.2), and the fit that reads Hertz's two numbers
 // off a computed contact-pressure map. Units: m, N, Pa; E* = E / (1 - nu^2).
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "lib/core/height_map.hpp"
@@ -30,7 +31,7 @@ struct HertzFit {
 // lattice cuts the profile) gives a and p0 smoothly, unlike counting contact nodes.
 // `pressure`: row-major (ny x nx) nodal pressures on a lattice of spacing h whose node (0, 0)
 // sits at (0, 0); (cx, cy) the paraboloid's apex.
-HertzFit fit_hertz_pressure(const std::vector<double>& pressure, int nx, int ny, double h, double cx, double cy,
+HertzFit fit_hertz_pressure(std::span<const double> pressure, int nx, int ny, double h, double cx, double cy,
                             double a_guess, double inner = 0.8);
 
 }  // namespace wr

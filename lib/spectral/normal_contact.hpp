@@ -81,8 +81,8 @@ class SpectralNormalContact {
   // the face over the obstacle and solves again. Keeps the pressure as the next start.
   void set_heights(const std::vector<double>& heights);
 
-  const std::vector<double>& pressure() const;  // Pa, row-major as the obstacle
-  const std::vector<double>& gap() const;       // m
+  const BigVector& pressure() const;  // Pa, row-major as the obstacle
+  const BigVector& gap() const;       // m
   std::size_t nx() const;
   std::size_t ny() const;
 

@@ -60,7 +60,7 @@ class GeometryFollowing {
       // The slopes under the face: sampled after the last update (below), so only the first
       // iteration samples here.
       if (it == 0) sample_all();
-      const std::vector<double>& p = solver_.pressure();
+      const BigVector& p = solver_.pressure();
       for (std::size_t k = 0; k < n_; ++k) {
         tx[k] = -p[k] * ssx[k];
         ty[k] = -p[k] * ssy[k];
@@ -100,7 +100,7 @@ class GeometryFollowing {
     }
     // Forces at the settled geometry (the slopes of the last sampling): the far face holds
     // Fx = sum p dh/dx dA.
-    const std::vector<double>& p = solver_.pressure();
+    const BigVector& p = solver_.pressure();
     double fx = 0, fy = 0;
     for (std::size_t k = 0; k < n_; ++k) {
       fx += p[k] * ssx[k];
@@ -199,8 +199,8 @@ SpectralTestResult run_spectral_contact_test(const HeightMap& obstacle, const Sp
     }
     st.sigma_star = st.fz / a0 / (opt.body.e_star() * opt.rms_slope);
     if (opt.face_maps) {
-      st.face_pressure = solver.pressure();
-      st.face_gap = solver.gap();
+      st.face_pressure.assign(solver.pressure().begin(), solver.pressure().end());
+      st.face_gap.assign(solver.gap().begin(), solver.gap().end());
       st.face_status.resize(st.face_pressure.size());
       for (std::size_t i = 0; i < st.face_pressure.size(); ++i) st.face_status[i] = st.face_pressure[i] > 0 ? 1.0 : 0.0;
     }

@@ -32,7 +32,7 @@ TractionResponse::TractionResponse(std::size_t nx, std::size_t ny, double lx, do
   }
 }
 
-void TractionResponse::apply(const std::vector<double>& tx, const std::vector<double>& ty, const std::vector<double>& p,
+void TractionResponse::apply(std::span<const double> tx, std::span<const double> ty, std::span<const double> p,
                              double far_x, double far_y, std::vector<double>& ux, std::vector<double>& uy,
                              std::vector<double>& uz) {
   std::copy(tx.begin(), tx.end(), fx_->real());

@@ -8,6 +8,7 @@
 // mean traction) on top of a prescribed rigid displacement of the far face; the half-space has
 // no finite mean mode and is refused.
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "lib/core/fft.hpp"
@@ -23,7 +24,7 @@ class TractionResponse {
 
   // ux, uy = (far_x, far_y) + the tangential displacements of the face; uz_coupling = the
   // normal displacement (into the body) caused by tx, ty.
-  void apply(const std::vector<double>& tx, const std::vector<double>& ty, const std::vector<double>& p, double far_x,
+  void apply(std::span<const double> tx, std::span<const double> ty, std::span<const double> p, double far_x,
              double far_y, std::vector<double>& ux, std::vector<double>& uy, std::vector<double>& uz_coupling);
 
  private:
