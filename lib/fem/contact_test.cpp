@@ -41,6 +41,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   res.face_spacing = obstacle.dx / opt.refine;
   b.young = opt.young;
   b.poisson = opt.poisson;
+  b.comm = opt.comm;
   ElasticBlock block(b);
   res.wall_setup = MPI_Wtime() - t_start;
   res.nodes = block.nodes();

@@ -36,6 +36,7 @@ struct ContactTestOptions {
   bool facet_normals = false;  // constraint normals of the hit triangles instead of the smooth blend
   std::string vtu_path;      // write the deformed block of the last step (.vtu), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
+  MPI_Comm comm = MPI_COMM_NULL;  // the processes sharing the block (null: PETSC_COMM_WORLD)
 };
 
 struct ContactTestResult {

@@ -78,6 +78,7 @@ std::array<double, 9> frame_of(const Vec3& n) {
 
 struct ElasticBlock::Impl {
   BlockSpec spec;
+  MPI_Comm comm = MPI_COMM_NULL;
   std::unique_ptr<GradedMesh> mesh;
   int rank = 0;
   PetscInt own_begin = 0, own_end = 0;  // owned node ids
@@ -136,8 +137,8 @@ struct ElasticBlock::Impl {
 
   void make_grid() {
     int ranks = 1;
-    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-    MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &ranks);
     try {
       mesh = std::make_unique<GradedMesh>(spec.mesh, ranks);
     } catch (const std::invalid_argument& e) {
@@ -173,7 +174,7 @@ struct ElasticBlock::Impl {
       }
       std::vector<std::int32_t>().swap(v);
     }
-    check(MatCreate(PETSC_COMM_WORLD, &K), "MatCreate");
+    check(MatCreate(comm, &K), "MatCreate");
     check(MatSetSizes(K, 3 * n_own, 3 * n_own, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
     check(MatSetType(K, MATAIJ), "MatSetType");
     check(MatSetBlockSize(K, 3), "MatSetBlockSize");
@@ -314,6 +315,7 @@ struct ElasticBlock::Impl {
 
 ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
   impl_->spec = spec;
+  impl_->comm = spec.comm == MPI_COMM_NULL ? PETSC_COMM_WORLD : spec.comm;
   impl_->make_grid();
   impl_->assemble();
 }
@@ -453,7 +455,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   check(VecDuplicate(m.u, &diag), "VecDuplicate");
   check(VecDuplicate(m.u, &ustar), "VecDuplicate");
   KSP ksp;
-  check(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate");
+  check(KSPCreate(m.comm, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
@@ -475,7 +477,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     double f = 0, fg = 0;
     for (PetscInt row : top_rows[c]) f += ra[row - rstart];
     VecRestoreArrayRead(r, &ra);
-    MPI_Allreduce(&f, &fg, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    MPI_Allreduce(&f, &fg, 1, MPI_DOUBLE, MPI_SUM, m.comm);
     return c == 2 ? -fg : fg;
   };
   const double reach = std::max(m.spec.mesh.lz, 1e-12);  // rays look this far for the obstacle
@@ -536,7 +538,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       const auto q = frame_of(f.normal);
       std::copy(q.begin(), q.end(), q_mine.begin() + 9 * (std::size_t(f.j) * (fnx + 1) + std::size_t(f.i)));
     }
-    MPI_Allreduce(q_mine.data(), q_all.data(), int(q_all.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    MPI_Allreduce(q_mine.data(), q_all.data(), int(q_all.size()), MPI_DOUBLE, MPI_SUM, m.comm);
     m.rotate_matrix(Khat, q_all);
     check(MatGetDiagonal(Khat, diag), "MatGetDiagonal");
     // Eliminated rows get a diagonal of the matrix's own scale, so that AMG smoothers see no
@@ -642,7 +644,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       VecRestoreArrayRead(uh, &ua);
       VecRestoreArrayRead(diag, &da);
       int any = 0;
-      MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+      MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, m.comm);
       if (!any) {
         pdas_ok = settled = true;
         break;
@@ -656,7 +658,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       break;
     }
     double ct = double(contact), ctot;
-    MPI_Allreduce(&ct, &ctot, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    MPI_Allreduce(&ct, &ctot, 1, MPI_DOUBLE, MPI_SUM, m.comm);
     out.contact_nodes = std::size_t(ctot);
     {
       const PetscScalar* ra;
@@ -684,7 +686,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
         face_sq[0] += (us[l] - uc[l]) * (us[l] - uc[l]);
         face_sq[1] += us[l] * us[l];
       }
-    MPI_Allreduce(face_sq, face_sq_g, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    MPI_Allreduce(face_sq, face_sq_g, 2, MPI_DOUBLE, MPI_SUM, m.comm);
     const double change = face_sq_g[1] > 0 ? std::sqrt(face_sq_g[0] / face_sq_g[1]) : 0.0;
     // Damping: halved when the correction reverses (a node chattering between two contact
     // states across a kink of the obstacle), restored while corrections keep their direction.
@@ -699,7 +701,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
         prev_corr[3 * n + c] = corr;
       }
     double dots[3] = {cc, cp, pp}, gdots[3];
-    MPI_Allreduce(dots, gdots, 3, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    MPI_Allreduce(dots, gdots, 3, MPI_DOUBLE, MPI_SUM, m.comm);
     if (load.follow_geometry && gdots[2] > 0) {
       const double cosine = gdots[1] / std::sqrt(gdots[0] * gdots[2]);
       if (cosine < -0.3)
@@ -794,7 +796,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       local[2 * nf + idx] = m.active[n] ? 1.0 : 0.0;
     }
     std::vector<double> global(3 * nf, 0.0);
-    MPI_Reduce(local.data(), global.data(), int(3 * nf), MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
+    MPI_Reduce(local.data(), global.data(), int(3 * nf), MPI_DOUBLE, MPI_SUM, 0, m.comm);
     out.face_pressure.assign(global.begin(), global.begin() + nf);
     out.face_gap.assign(global.begin() + nf, global.begin() + 2 * nf);
     out.face_status.assign(global.begin() + 2 * nf, global.end());
@@ -802,8 +804,8 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   VecRestoreArrayRead(r, &rr);
   VecRestoreArrayRead(m.u, &uu);
   double loc[5] = {fx, fy, fz, sep, 0}, glob[5];
-  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_SUM, m.comm);
+  MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, m.comm);
   out.fx = glob[0];
   out.fy = glob[1];
   out.fz = glob[2];

@@ -16,6 +16,8 @@
 // (default 0.8) and the loop stops when the relative change of the bottom-face displacement
 // (l2 over the face nodes: the lumped boundary mass on this uniform face grid) is below a
 // tolerance. Units: SI, forces in N for the given E (Pa).
+#include <mpi.h>
+
 #include <string>
 #include <vector>
 
@@ -28,6 +30,9 @@ struct BlockSpec {
   GradedMeshSpec mesh;     // sizes (m), face cells, grading
   double young = 1.0;      // E, Pa
   double poisson = 0.45;
+  // The processes that share the block (PETSC_COMM_WORLD by default; PETSC_COMM_SELF lets
+  // every rank solve a block of its own, as independent runs of a sweep do).
+  MPI_Comm comm = MPI_COMM_NULL;  // null: PETSC_COMM_WORLD
 };
 
 enum class TopCondition { fixed, frictionless };  // top face: all components prescribed, or only z
