@@ -184,12 +184,6 @@ struct Validity {
   nlohmann::json json;
 };
 
-nlohmann::json validity_json(ContactModel m, const std::vector<ValidityCheck>& checks, const std::string& chosen_by) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& v : checks) list.push_back({{"check", v.name}, {"passed", v.passed}, {"detail", v.detail}});
-  return {{"model", model_name(m)}, {"valid", all_passed(checks)}, {"chosen_by", chosen_by}, {"checks", list}};
-}
-
 // A result outside its model's validity is said so on stderr (and flagged in --json/--out).
 void warn_if_invalid(ContactModel m, const std::vector<ValidityCheck>& checks) {
   for (const auto& v : checks)

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "app/synth_options.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
@@ -18,68 +19,13 @@ namespace wr::app {
 namespace {
 
 struct SynthCli {
-  std::string output, json, scene;
-  std::size_t size = 0, nx = 0, ny = 0;
-  double dx = 0, h0 = 0, hurst = 0, q0_ratio = 0, q1 = 0, q1_fraction = 0;
-  int oversample = 1, threads = 0;
-  std::uint64_t seed = 1;
+  std::string output, json;
+  SynthOptions surface;
   bool quiet = false;
-  std::map<std::string, CLI::Option*> opts;
-  bool given(const std::string& name) const { return opts.at(name)->count() > 0; }
 };
 
-std::string scene_path(const std::string& name) {
-  if (name == "default") return std::string(WETROAD_SHARE_DIR) + "/scenes/default-asphalt.json";
-  return name;
-}
-
-// Scene file first, then every option the user gave on the command line.
-SynthParams resolve(const SynthCli& c) {
-  SynthParams p;
-  if (!c.scene.empty()) {
-    const std::string path = scene_path(c.scene);
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "cannot open scene file");
-    nlohmann::json j;
-    try {
-      in >> j;
-    } catch (const std::exception& e) {
-      throw InputError(path, std::string("not valid JSON: ") + e.what());
-    }
-    const auto s = j.value("surface", nlohmann::json::object());
-    try {
-      if (s.contains("size")) p.nx = p.ny = s["size"].get<std::size_t>();
-      p.nx = s.value("nx", p.nx);
-      p.ny = s.value("ny", p.ny);
-      p.dx = s.value("dx", p.dx);
-      p.h0 = s.value("h0", p.h0);
-      p.hurst = s.value("hurst", p.hurst);
-      p.q0_ratio = s.value("q0_ratio", p.q0_ratio);
-      if (s.contains("q1")) p.q1 = s["q1"].get<double>();
-      p.q1_fraction = s.value("q1_fraction", p.q1_fraction);
-      p.oversample = s.value("oversample", p.oversample);
-      p.seed = s.value("seed", p.seed);
-    } catch (const std::exception& e) {
-      throw InputError(path, std::string("bad value in \"surface\": ") + e.what());
-    }
-  }
-  if (c.given("--size")) p.nx = p.ny = c.size;
-  if (c.given("--nx")) p.nx = c.nx;
-  if (c.given("--ny")) p.ny = c.ny;
-  if (c.given("--dx")) p.dx = c.dx;
-  if (c.given("--h0")) p.h0 = c.h0;
-  if (c.given("--hurst")) p.hurst = c.hurst;
-  if (c.given("--q0-ratio")) p.q0_ratio = c.q0_ratio;
-  if (c.given("--q1")) p.q1 = c.q1;
-  if (c.given("--q1-fraction")) p.q1_fraction = c.q1_fraction;
-  if (c.given("--oversample")) p.oversample = c.oversample;
-  if (c.given("--seed")) p.seed = c.seed;
-  p.threads = c.threads;
-  return p;
-}
-
 int run_synth(const SynthCli& c) {
-  const SynthParams p = resolve(c);
+  const SynthParams p = resolve_synth_options(c.surface);
   PhaseTimer timer;
   timer.start("synthesize");
   const SynthResult r = synthesize(p);
@@ -90,7 +36,7 @@ int run_synth(const SynthCli& c) {
   prov.parameters = {{"nx", p.nx},         {"ny", p.ny},           {"dx", p.dx},
                      {"h0", p.h0},         {"hurst", p.hurst},     {"q0_ratio", p.q0_ratio},
                      {"q1", r.psd.q1},     {"q1_fraction", p.q1_fraction},
-                     {"oversample", p.oversample}, {"seed", p.seed}, {"scene", c.scene}};
+                     {"oversample", p.oversample}, {"seed", p.seed}, {"scene", c.surface.scene}};
   SynthesisRecord rec{r.psd, r.k_eq44, r.h0_eq44_on_lattice, p.seed, p.oversample};
   prov.timings = timer.to_json();
   write_surface_file(c.output, r.map, rec, prov.to_json());
@@ -141,27 +87,9 @@ Command add_synth(CLI::App& root) {
       "Example: wetroad synth --scene default -o road.h5\n"
       "         wetroad synth --size 300 --dx 1e-4 --h0 7.08e-4 --q1 62832 --oversample 2 -o c.h5");
   s->add_option("-o,--output", c->output, "output HDF5 file (written atomically)")->required();
-  c->opts["--scene"] = s->add_option("--scene", c->scene,
-                                     "scene JSON with a \"surface\" block of defaults ('default' = "
-                                     "share/scenes/default-asphalt.json); options given here override it");
-  c->opts["--size"] = s->add_option("--size", c->size, "grid points per side, N (default 300)");
-  c->opts["--nx"] = s->add_option("--nx", c->nx, "grid points along x (overrides --size)");
-  c->opts["--ny"] = s->add_option("--ny", c->ny, "grid points along y (overrides --size)");
-  c->opts["--dx"] = s->add_option("--dx", c->dx, "grid spacing in m, same in x and y (default 1e-4)");
-  c->opts["--h0"] = s->add_option("--h0", c->h0, "rms height in m (default 3e-4)");
-  c->opts["--hurst"] = s->add_option("--hurst", c->hurst, "Hurst exponent H in (0,1) (default 0.7)");
-  c->opts["--q0-ratio"] = s->add_option("--q0-ratio", c->q0_ratio, "roll-off q0 / qL, qL = 2 pi / L (default 5)");
-  c->opts["--q1"] = s->add_option("--q1", c->q1,
-                                  "short-distance cut-off in 1/m (default: the grid Nyquist pi/dx); above "
-                                  "Nyquist it is refused unless --oversample makes the grid fine enough");
-  c->opts["--q1-fraction"] = s->add_option("--q1-fraction", c->q1_fraction,
-                                           "low-pass: keep q <= f q1 without renormalising, so h0 drops "
-                                           "(thesis dataset C: 1, 1/2, 1/4, 1/8) (default 1)");
-  c->opts["--oversample"] = s->add_option("--oversample", c->oversample,
-                                          "generate on a grid S times finer (N S points at dx / S) (default 1)");
-  c->opts["--seed"] = s->add_option("--seed", c->seed, "random seed of the phases (default 1)");
+  add_synth_options(*s, c->surface);
   s->add_option("--json", c->json, "also write a JSON summary of what was generated");
-  s->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");
+  s->add_option("--threads", c->surface.threads, "worker threads (default: all hardware threads); results do not depend on it");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_synth(*c); }};
 }

@@ -17,5 +17,6 @@ Command add_analyze(CLI::App& root);
 Command add_fill(CLI::App& root);
 Command add_contact(CLI::App& root);
 Command add_bench(CLI::App& root);
+Command add_sweep_coverage(CLI::App& root);
 
 }  // namespace wr::app

@@ -12,14 +12,15 @@ int main(int argc, char** argv) {
   CLI::App app{
       "wetroad - tyre-road wet friction from road texture.\n"
       "Synthesize or import road surfaces, analyze their texture (PSD, moments, summits, MPD),\n"
-      "fill them with rain water, and (in later versions) compute elastostatic friction.\n"
+      "fill them with rain water, press and shear an elastic block on them (FEM or spectral),\n"
+      "and sweep friction against water coverage.\n"
       "Units are SI (m, Pa) unless an option says otherwise."};
   app.set_version_flag("--version", std::string("wetroad ") + wr::kVersion);
   app.require_subcommand(1);
   app.fallthrough(false);
 
   const std::vector<wr::app::Command> commands = {wr::app::add_synth(app), wr::app::add_analyze(app), wr::app::add_fill(app), wr::app::add_contact(app),
-                                                  wr::app::add_bench(app)};
+                                                  wr::app::add_sweep_coverage(app), wr::app::add_bench(app)};
 
   try {
     app.parse(argc, argv);

@@ -589,8 +589,8 @@ void plot_kappa(const nlohmann::json& rows, const std::string& path) {
     p.series.push_back(s);
   }
   if (!s_all.empty()) {
-    PlotSeries persson{"Persson kappa 1.60", {s_all.front(), s_all.back()}, {}, "lines"};
-    PlotSeries bgt{"BGT kappa 2.51", {s_all.front(), s_all.back()}, {}, "lines"};
+    PlotSeries persson{"Persson kappa 1.60", {s_all.front(), s_all.back()}, {}, "lines", {}};
+    PlotSeries bgt{"BGT kappa 2.51", {s_all.front(), s_all.back()}, {}, "lines", {}};
     for (double x : persson.x) {
       persson.y.push_back(kappa_persson() * x);
       bgt.y.push_back(kappa_bgt() * x);
@@ -606,7 +606,7 @@ void plot_spectral_vs_fem(const nlohmann::json& rows, const std::string& path) {
   p.title = "Spectral layer against the FEM block at equal mean pressure";
   p.xlabel = "rms slope";
   p.ylabel = "A/A0 (spectral) / A/A0 (FEM) - 1, %";
-  PlotSeries s{"refine " + std::to_string(rows.empty() ? 0 : rows[0]["refine"].get<int>()), {}, {}, "linespoints"};
+  PlotSeries s{"refine " + std::to_string(rows.empty() ? 0 : rows[0]["refine"].get<int>()), {}, {}, "linespoints", {}};
   for (const auto& r : rows) {
     s.x.push_back(r["rms_slope"].get<double>());
     s.y.push_back(100 * r["area_difference"].get<double>());
@@ -674,7 +674,7 @@ void plot_accuracy(const nlohmann::json& result, const std::string& path) {
   p.ylabel = "|A/A0 / A/A0(finest FEM) - 1|";
   p.logx = p.logy = true;
   for (const char* model : {"analytic", "spectral", "fem"}) {
-    PlotSeries s{model, {}, {}, "linespoints"};
+    PlotSeries s{model, {}, {}, "linespoints", {}};
     for (const auto& q : result["points"])
       if (q["model"] == model && q["error"].get<double>() > 0) {
         s.x.push_back(q["wall_s"].get<double>());

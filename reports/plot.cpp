@@ -35,16 +35,22 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
   if (spec.logy) g << "set logscale y\n";
   for (std::size_t s = 0; s < spec.series.size(); ++s) {
     const PlotSeries& ps = spec.series[s];
-    if (ps.x.size() != ps.y.size()) throw std::runtime_error(path + ": series '" + ps.label + "' has x and y of different lengths");
+    if (ps.x.size() != ps.y.size() || (!ps.yerr.empty() && ps.yerr.size() != ps.y.size()))
+      throw std::runtime_error(path + ": series '" + ps.label + "' has x, y (and yerr) of different lengths");
     g << "$d" << s << " << EOD\n";
     for (std::size_t k = 0; k < ps.x.size(); ++k)
-      if (std::isfinite(ps.x[k]) && std::isfinite(ps.y[k])) g << ps.x[k] << " " << ps.y[k] << "\n";
+      if (std::isfinite(ps.x[k]) && std::isfinite(ps.y[k])) {
+        g << ps.x[k] << " " << ps.y[k];
+        if (!ps.yerr.empty()) g << " " << (std::isfinite(ps.yerr[k]) ? ps.yerr[k] : 0.0);
+        g << "\n";
+      }
     g << "EOD\n";
   }
   g << "plot ";
   for (std::size_t s = 0; s < spec.series.size(); ++s)
-    g << (s ? ", " : "") << "$d" << s << " using 1:2 with " << spec.series[s].style << " lw 2 title "
-      << quoted(spec.series[s].label);
+    g << (s ? ", " : "") << "$d" << s
+      << (spec.series[s].yerr.empty() ? " using 1:2 with " + spec.series[s].style : std::string(" using 1:2:3 with yerrorlines"))
+      << " lw 2 title " << quoted(spec.series[s].label);
   g << "\nunset output\n";
   const std::string script = temporary_sibling(path) + ".gp";
   {

@@ -11,6 +11,7 @@ struct PlotSeries {
   std::string label;
   std::vector<double> x, y;
   std::string style = "linespoints";  // gnuplot style: lines, points, linespoints
+  std::vector<double> yerr;  // optional half-widths: drawn as error bars (yerrorlines, style ignored)
 };
 
 struct PlotSpec {

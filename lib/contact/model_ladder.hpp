@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace wr {
 
 enum class ContactModel { analytic, spectral, fem };
@@ -36,6 +38,10 @@ ContactModel parse_model(const std::string& name);
 
 std::vector<ValidityCheck> validity_checks(ContactModel m, const ContactRequest& r);
 bool all_passed(const std::vector<ValidityCheck>& checks);
+
+// {model, valid, chosen_by ("user", "auto", "sweep"), checks: [{check, passed, detail}]}: the
+// record every contact result carries.
+nlohmann::json validity_json(ContactModel m, const std::vector<ValidityCheck>& checks, const std::string& chosen_by);
 
 struct ModelChoice {
   bool found = false;

@@ -100,6 +100,20 @@ void Hdf5Reader::read_doubles(const std::string& dataset, double* out, std::size
     throw InputError(path_, "cannot read dataset " + dataset + " (corrupt or truncated file)");
 }
 
+std::string Hdf5Reader::read_text(const std::string& dataset) const {
+  Handle ds(H5Dopen2(file_, dataset.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!ds.ok()) throw InputError(path_, "cannot open dataset " + dataset);
+  Handle type(H5Dget_type(ds.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
+    throw InputError(path_, "dataset " + dataset + " is not a fixed-length string");
+  const std::size_t n = H5Tget_size(type.get());
+  std::string out(n, '\0');
+  if (H5Dread(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw InputError(path_, "cannot read dataset " + dataset + " (corrupt or truncated file)");
+  out.resize(out.find('\0') == std::string::npos ? n : out.find('\0'));
+  return out;
+}
+
 std::optional<double> Hdf5Reader::attr_double(const std::string& object,
                                               const std::string& name) const {
   if (!link_exists(file_, object)) return std::nullopt;
@@ -211,6 +225,16 @@ void Hdf5Writer::write_attr(const std::string& object, const std::string& name,
   H5Tset_size(type.get(), value.size() + 1);  // room for the terminating NUL
   H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
   write_attr_raw(file_, final_path_, object, name, type.get(), type.get(), value.c_str());
+}
+
+void Hdf5Writer::write_text(const std::string& name, const std::string& text) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), text.size() + 1);
+  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle ds(H5Dcreate2(file_, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (!ds.ok() || H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.c_str()) < 0)
+    throw InputError(final_path_, "cannot write dataset " + name + " (disk full?)");
 }
 
 void Hdf5Writer::commit() {

@@ -30,6 +30,8 @@ class Hdf5Reader {
   // Attributes on an object (group or dataset path, "/" for the root).
   std::optional<double> attr_double(const std::string& object, const std::string& name) const;
   std::optional<std::string> attr_string(const std::string& object, const std::string& name) const;
+  // A scalar string dataset (write_text); throws InputError when absent or not a string.
+  std::string read_text(const std::string& dataset) const;
 
  private:
   std::string path_;
@@ -50,6 +52,8 @@ class Hdf5Writer {
   void write_attr(const std::string& object, const std::string& name, double value);
   void write_attr(const std::string& object, const std::string& name, std::int64_t value);
   void write_attr(const std::string& object, const std::string& name, const std::string& value);
+  // A scalar string dataset: for text beyond the 64 KiB limit of attributes (JSON records).
+  void write_text(const std::string& name, const std::string& text);
   void commit();
 
  private:

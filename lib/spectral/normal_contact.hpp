@@ -42,6 +42,7 @@ struct SpectralOptions {
   std::size_t stagnation_window = 100;  // stop when the error has not halved over two windows
   int admit_every = 8;        // iterations between admissions of penetrating points (1: Polonsky-Keer)
   int threads = 0;            // FFT threads (0: all hardware threads); read where a solver is built
+  FftPlanning planning = FftPlanning::measure;  // read where a solver is built (lib/core/fft.hpp)
 };
 
 struct SpectralNormalResult {

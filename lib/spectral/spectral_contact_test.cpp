@@ -30,7 +30,7 @@ class GeometryFollowing {
  public:
   GeometryFollowing(const HeightMap& m, const SpectralTestOptions& opt, SpectralNormalContact& solver)
       : m_(m), opt_(opt), solver_(solver), n_(m.size()),
-        response_(m.nx, m.ny, m.lx(), m.ly(), opt.body, opt.solver.threads),
+        response_(m.nx, m.ny, m.lx(), m.ly(), opt.body, opt.solver.threads, opt.solver.planning),
         h_(m.h.begin(), m.h.end()), sx_(n_), sy_(n_), ux_(n_, 0.0), uy_(n_, 0.0) {
     for (std::size_t j = 0; j < m.ny; ++j)
       for (std::size_t i = 0; i < m.nx; ++i) {
@@ -166,7 +166,7 @@ SpectralTestResult run_spectral_contact_test(const HeightMap& obstacle, const Sp
   res.nx = obstacle.nx;
   res.ny = obstacle.ny;
   res.spacing = obstacle.dx;
-  SpectralNormalContact solver(obstacle, opt.body, opt.solver.threads);
+  SpectralNormalContact solver(obstacle, opt.body, opt.solver.threads, opt.solver.planning);
   std::unique_ptr<GeometryFollowing> geometry;
   if (opt.shear) geometry = std::make_unique<GeometryFollowing>(obstacle, opt, solver);
   res.wall_setup = seconds_since(t0);

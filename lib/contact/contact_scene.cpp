@@ -1,0 +1,128 @@
+#include "lib/contact/contact_scene.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "lib/contact/periodic_obstacle.hpp"
+#include "lib/core/errors.hpp"
+#include "lib/fem/contact_test.hpp"
+#include "lib/spectral/spectral_contact_test.hpp"
+#include "roads/height_stats.hpp"
+
+namespace wr {
+
+void check_contact_scene(const ContactScene& s) {
+  if (s.model == ContactModel::analytic)
+    throw InputError("--model", "the analytic model has no shear test; use fem or spectral");
+  if (!(s.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
+  if (s.shear && !(s.ux > 0)) throw InputError("--ux", "the shear test needs a tangential displacement > 0 m");
+  if (s.normal_steps < 1 || (s.shear && s.shear_steps < 1)) throw InputError("--steps", "must be >= 1");
+  if (s.refine < 1 || s.refine > 16) throw InputError("--refine", "must be 1 ... 16");
+  if (!(s.young > 0)) throw InputError("--E", "must be > 0 Pa");
+  if (!(s.poisson > -1 && s.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
+  if (!(s.tolerance > 0)) throw InputError("--tol", "must be > 0");
+}
+
+namespace {
+
+void summarise(SceneResult& r) {
+  r.mu_peak = std::numeric_limits<double>::quiet_NaN();
+  if (const ContactStep* p = peak_friction(r.steps)) {
+    r.mu_peak = p->mu;
+    r.ux_peak = p->ux;
+    r.area_at_peak = p->area_fraction;
+  }
+  for (const auto& st : r.steps)
+    if (st.ux == 0 && st.converged) {
+      r.area_normal = st.area_fraction;
+      r.fz_normal = st.fz;
+    }
+  if (r.failed && r.message.empty() && !r.steps.empty()) r.message = r.steps.back().message;
+  if (r.failed && r.message.empty()) r.message = "contact run failed";
+}
+
+SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
+  ContactTestOptions o;
+  o.shear = s.shear;
+  o.uz = s.uz;
+  o.ux = s.ux;
+  o.normal_steps = s.normal_steps;
+  o.shear_steps = s.shear_steps;
+  o.refine = s.refine;
+  o.height = s.height;
+  o.young = s.young;
+  o.poisson = s.poisson;
+  o.tolerance = s.tolerance;
+  if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
+  o.rms_slope = rms_slope_finite_difference(obstacle, 1);
+  o.max_penetration = 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
+  o.comm = comm;
+  const ContactTestResult t = run_contact_test(obstacle, o);
+  SceneResult r;
+  r.model = "fem";
+  r.steps = t.steps;
+  r.failed = t.failed;
+  r.unknowns = t.nodes;
+  r.wall_s = t.wall_s;
+  return r;
+}
+
+SceneResult run_spectral(const HeightMap& obstacle, const ContactScene& s) {
+  const HeightMap m = resample_triangulated(obstacle, s.refine);  // the FEM's face lattice
+  SpectralTestOptions o;
+  o.uz = s.uz;
+  o.steps = s.normal_steps;
+  o.shear = s.shear;
+  o.ux = s.ux;
+  o.shear_steps = s.shear_steps;
+  o.geometry_tolerance = s.tolerance;
+  if (s.max_iterations > 0) (o.shear ? o.max_geometry_iterations : o.solver.max_iterations) = s.max_iterations;
+  o.body.young = s.young;
+  o.body.poisson = s.poisson;
+  o.body.thickness = s.height > 0 ? s.height : m.lx();
+  o.solver.tolerance = s.spectral_tolerance;
+  o.solver.threads = s.threads;
+  o.solver.planning = FftPlanning::estimate;  // bit-identical runs whatever the machine's wisdom
+  o.rms_slope = rms_slope_finite_difference(m, 1);
+  check_spectral_test_options(o);
+  const SpectralTestResult t = run_spectral_contact_test(m, o);
+  SceneResult r;
+  r.model = "spectral";
+  r.steps = t.steps;
+  r.failed = t.failed;
+  r.unknowns = t.nx * t.ny;
+  r.wall_s = t.wall_s;
+  return r;
+}
+
+}  // namespace
+
+SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
+  check_contact_scene(s);
+  ContactRequest req;
+  req.shear = s.shear;
+  req.rms_slope = rms_slope_finite_difference(obstacle, 1);
+  req.e_star = s.young / (1 - s.poisson * s.poisson);
+  const auto checks = validity_checks(s.model, req);
+  SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, comm) : run_spectral(obstacle, s);
+  r.validity = validity_json(s.model, checks, "user");
+  summarise(r);
+  return r;
+}
+
+nlohmann::json contact_scene_json(const ContactScene& s) {
+  return {{"model", model_name(s.model)}, {"shear", s.shear},
+          {"uz", s.uz},
+          {"ux", s.ux},
+          {"normal_steps", s.normal_steps},
+          {"shear_steps", s.shear_steps},
+          {"refine", s.refine},
+          {"E", s.young},
+          {"nu", s.poisson},
+          {"height", s.height},
+          {"tolerance", s.tolerance},
+          {"spectral_tolerance", s.spectral_tolerance},
+          {"max_iterations", s.max_iterations}};
+}
+
+}  // namespace wr

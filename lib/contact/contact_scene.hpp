@@ -1,0 +1,58 @@
+#pragma once
+// One contact experiment (thesis sec. 4.2.2: Problem A, then B) on one obstacle with a model of
+// the ladder, as a sweep runs it: the scene's parameters in one place, the model's own options
+// derived from them, and one record per run whichever model computed it.
+//
+// The FEM runs on `comm` (every rank of it shares the block); the spectral model on threads in
+// the calling process. The analytic model has no shear test and is refused.
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "lib/contact/contact_step.hpp"
+#include "lib/contact/model_ladder.hpp"
+#include "lib/core/height_map.hpp"
+
+namespace wr {
+
+struct ContactScene {
+  ContactModel model = ContactModel::fem;
+  bool shear = true;          // Problem B after A
+  double uz = 0;              // m, final normal displacement of the top (> 0)
+  double ux = 0;              // m, final tangential displacement (shear, > 0)
+  int normal_steps = 3, shear_steps = 3;
+  int refine = 1;             // contact-face spacing = obstacle spacing / refine
+  double young = 1.0, poisson = 0.45;  // Pa, -
+  double height = 0;          // m, block height (0: the period, a cube); the spectral layer's thickness
+  double tolerance = 1e-4;    // relative change per geometry (Signorini) iteration
+  double spectral_tolerance = 1e-8;  // Polonsky-Keer error
+  int max_iterations = 0;     // per step (0: the model's default)
+  int threads = 1;            // spectral FFT threads
+};
+
+struct SceneResult {
+  std::string model;          // "fem" or "spectral"
+  std::vector<ContactStep> steps;
+  bool failed = false;
+  std::string message;        // why it failed
+  std::size_t unknowns = 0;   // FEM nodes or spectral grid points
+  double wall_s = 0;
+  nlohmann::json validity;    // the model's checks for this scene
+  // Convenience: the static friction (peak mu of the converged shear steps, NaN without one)
+  // and the contact-area fraction at the peak and at the end of the normal load.
+  double mu_peak = 0, ux_peak = 0, area_at_peak = 0, area_normal = 0, fz_normal = 0;
+};
+
+// Throws InputError naming the option at fault (uz, ux, steps, refine, E, nu, the analytic model).
+void check_contact_scene(const ContactScene& s);
+
+// `obstacle` periodic, no NaN. A step that does not converge ends the run: failed, with the
+// finished steps kept.
+SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
+
+nlohmann::json contact_scene_json(const ContactScene& s);
+
+}  // namespace wr

@@ -1,0 +1,261 @@
+#include "lib/sweep/coverage_sweep.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "lib/core/errors.hpp"
+#include "roads/height_stats.hpp"
+#include "roads/spectrum.hpp"
+#include "roads/surface_import.hpp"
+
+namespace wr {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+nlohmann::json step_record(const ContactStep& s) {
+  return {{"uz", s.uz},
+          {"ux", s.ux},
+          {"fz", s.fz},
+          {"fx", s.fx},
+          {"mu", s.mu},
+          {"area_fraction", s.area_fraction},
+          {"sigma_star", s.sigma_star},
+          {"separation", s.separation},
+          {"max_penetration", s.max_penetration},
+          {"iterations", s.signorini_iterations},
+          {"converged", s.converged},
+          {"wall_s", s.wall_s}};
+}
+
+// NaN (a failed run's missing peak) is not JSON: null instead.
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+void check_sweep_spec(const CoverageSweepSpec& s) {
+  if (s.coverages.empty()) throw InputError("--coverages", "give at least one coverage");
+  for (std::size_t i = 0; i < s.coverages.size(); ++i) {
+    const double c = s.coverages[i];
+    if (!(c >= 0 && c < 1)) throw InputError("--coverages", "each coverage must be a fraction in [0, 1)");
+    if (i > 0 && !(c > s.coverages[i - 1])) throw InputError("--coverages", "coverages must be ascending and distinct");
+  }
+  if (s.realizations < 1) throw InputError("--realizations", "must be >= 1");
+  if (s.realizations > 1 && !s.synth) throw InputError("--realizations", "only synthetic surfaces have realizations");
+  if (!s.synth && s.surface_path.empty()) throw InputError("--surface", "give a surface file or synthesis options");
+  check_contact_scene(s.scene);
+}
+
+std::vector<CoverageRunKey> plan_runs(const CoverageSweepSpec& s) {
+  std::vector<CoverageRunKey> keys;
+  for (int r = 0; r < s.realizations; ++r)
+    for (double c : s.coverages) keys.push_back({int(keys.size()), r, c});
+  return keys;
+}
+
+nlohmann::json sweep_spec_json(const CoverageSweepSpec& s) {
+  nlohmann::json j = {{"coverages", s.coverages},
+                      {"realizations", s.realizations},
+                      {"scene", contact_scene_json(s.scene)},
+                      {"tiling", s.tiling == Tiling::torus ? "torus" : "3x3"},
+                      {"connectivity", s.connectivity}};
+  if (s.synth) {
+    const SynthParams& p = *s.synth;
+    j["surface"] = {{"synthetic", true}, {"nx", p.nx},   {"ny", p.ny},       {"dx", p.dx},
+                    {"h0", p.h0},        {"hurst", p.hurst}, {"q0_ratio", p.q0_ratio},
+                    {"q1", p.q1 ? nlohmann::json(*p.q1) : nlohmann::json(nullptr)},
+                    {"q1_fraction", p.q1_fraction}, {"oversample", p.oversample}, {"seed", p.seed}};
+  } else {
+    j["surface"] = {{"synthetic", false}, {"path", s.surface_path}};
+  }
+  return j;
+}
+
+CoverageRunner::CoverageRunner(const CoverageSweepSpec& spec, MPI_Comm contact_comm, int threads)
+    : spec_(spec), comm_(contact_comm), threads_(threads) {}
+
+void CoverageRunner::load_realization(int r) {
+  if (r == loaded_) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (spec_.synth) {
+    SynthParams p = *spec_.synth;
+    p.seed = spec_.synth->seed + std::uint64_t(r);
+    p.threads = threads_;
+    ground_ = synthesize(p).map;
+    seed_ = p.seed;
+  } else {
+    LoadedSurface s = load_surface(spec_.surface_path);
+    if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
+    ground_ = std::move(s.map);
+    seed_ = 0;
+  }
+  FillRequest lim;
+  lim.limit = true;
+  lim.tiling = spec_.tiling;
+  lim.connectivity = spec_.connectivity;
+  drained_limit_ = fill_water(ground_, lim).water.coverage;
+  wall_surface_ = seconds_since(t0);
+  loaded_ = r;
+}
+
+nlohmann::json CoverageRunner::run(const CoverageRunKey& key) {
+  const auto t0 = std::chrono::steady_clock::now();
+  load_realization(key.realization);
+  nlohmann::json rec = {{"index", key.index}, {"realization", key.realization}, {"seed", seed_},
+                        {"target", key.target}, {"drained_limit", drained_limit_}};
+  HeightMap wet = ground_;
+  const auto t_water = std::chrono::steady_clock::now();
+  if (key.target == 0) {
+    rec.update({{"water", "dry"}, {"coverage", 0.0}, {"rain_depth", 0.0}, {"mean_pool_depth", 0.0},
+                {"max_pool_depth", 0.0}, {"stored_volume", 0.0}, {"lakes", 0}});
+  } else {
+    FillRequest req;
+    req.coverage = key.target;
+    // Up to the drained limit the water runs off through the periodic surface; beyond it only
+    // standing (stagnant) water reaches the target (thesis Figure 5.25).
+    req.mode = key.target <= drained_limit_ ? WaterMode::drained : WaterMode::stagnant;
+    req.tiling = spec_.tiling;
+    req.connectivity = spec_.connectivity;
+    try {
+      const FillResult f = fill_water(ground_, req);
+      std::copy(f.water.level.begin(), f.water.level.end(), wet.h.begin());
+      rec.update({{"water", req.mode == WaterMode::drained ? "drained" : "stagnant"},
+                  {"coverage", f.water.coverage},
+                  {"rain_depth", f.water.rain_depth},
+                  {"mean_pool_depth", f.water.mean_depth},
+                  {"max_pool_depth", f.water.max_depth},
+                  {"stored_volume", f.water.stored_volume},
+                  {"lakes", f.water.lakes}});
+    } catch (const InputError& e) {
+      rec.update({{"status", "failed"}, {"message", std::string("water: ") + e.what()}});
+      rec["wall"] = {{"surface", wall_surface_}, {"water", seconds_since(t_water)}, {"contact", 0.0},
+                     {"total", seconds_since(t0)}};
+      return rec;
+    }
+  }
+  const double wall_water = seconds_since(t_water);
+  // The wet surface's own texture (Figure 5.26): pools flatten it.
+  const SpectrumResult sp = analyze_spectrum(wet, threads_);
+  rec["wet_sq"] = height_stats(wet, threads_).sq;
+  rec["wet_rms_slope"] = rms_slope_finite_difference(wet, threads_);
+  rec["psd"] = {{"q", sp.psd.q}, {"C", sp.psd.C}};
+
+  const auto t_contact = std::chrono::steady_clock::now();
+  ContactScene scene = spec_.scene;
+  scene.threads = threads_;
+  SceneResult c;
+  try {
+    c = run_contact_scene(wet, scene, comm_);
+  } catch (const std::exception& e) {
+    c.failed = true;
+    c.model = model_name(scene.model);
+    c.message = e.what();
+    c.mu_peak = std::numeric_limits<double>::quiet_NaN();
+  }
+  nlohmann::json steps = nlohmann::json::array();
+  for (const auto& st : c.steps) steps.push_back(step_record(st));
+  rec["contact"] = {{"model", c.model},
+                    {"mu_peak", number_or_null(c.mu_peak)},
+                    {"ux_peak", c.ux_peak},
+                    {"area_at_peak", c.area_at_peak},
+                    {"area_normal", c.area_normal},
+                    {"fz_normal", c.fz_normal},
+                    {"failed", c.failed},
+                    {"message", c.message},
+                    {"unknowns", c.unknowns},
+                    {"steps", steps},
+                    {"validity", c.validity}};
+  const bool ok = !c.failed && std::isfinite(c.mu_peak);
+  rec["status"] = ok ? "ok" : "failed";
+  rec["message"] = ok ? "" : "contact: " + c.message;
+  rec["wall"] = {{"surface", wall_surface_}, {"water", wall_water}, {"contact", seconds_since(t_contact)},
+                 {"total", seconds_since(t0)}};
+  return rec;
+}
+
+double student_t95(int dof) {
+  static const double t[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
+                             2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
+                             2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
+  if (dof < 1) return std::numeric_limits<double>::quiet_NaN();
+  if (dof <= 30) return t[dof - 1];
+  return 1.960 + 2.4 / dof;  // within 0.2 % of the exact quantile beyond 30
+}
+
+namespace {
+
+struct Stat {
+  std::vector<double> v;
+  nlohmann::json json() const {
+    const std::size_t n = v.size();
+    if (n == 0) return {{"mean", nullptr}, {"std", nullptr}, {"ci95", nullptr}, {"n", 0}};
+    double m = 0;
+    for (double x : v) m += x;
+    m /= double(n);
+    double ss = 0;
+    for (double x : v) ss += (x - m) * (x - m);
+    const double sd = n > 1 ? std::sqrt(ss / double(n - 1)) : 0.0;
+    const double ci = n > 1 ? student_t95(int(n) - 1) * sd / std::sqrt(double(n)) : 0.0;
+    return {{"mean", m}, {"std", sd}, {"ci95", ci}, {"n", n}};
+  }
+};
+
+double get_number(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
+  // Dry friction per realization: the reference of mu_ratio.
+  std::map<int, double> mu_dry;
+  for (const auto& r : runs)
+    if (r.value("target", -1.0) == 0 && r.value("status", "") == "ok")
+      mu_dry[r["realization"].get<int>()] = r["contact"]["mu_peak"].get<double>();
+  std::map<double, std::vector<const nlohmann::json*>> by_target;
+  for (const auto& r : runs) by_target[r["target"].get<double>()].push_back(&r);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& [target, list] : by_target) {
+    Stat mu, ratio, area_peak, area_normal, coverage, pool, sq;
+    std::vector<int> indices;
+    std::string water;
+    int failed = 0;
+    for (const nlohmann::json* r : list) {
+      indices.push_back((*r)["index"].get<int>());
+      if (r->value("status", "") != "ok") {
+        ++failed;
+        continue;
+      }
+      water = (*r)["water"].get<std::string>();
+      const double m = (*r)["contact"]["mu_peak"].get<double>();
+      mu.v.push_back(m);
+      const auto d = mu_dry.find((*r)["realization"].get<int>());
+      if (d != mu_dry.end() && d->second != 0) ratio.v.push_back(m / d->second);
+      area_peak.v.push_back(get_number((*r)["contact"], "area_at_peak"));
+      area_normal.v.push_back(get_number((*r)["contact"], "area_normal"));
+      coverage.v.push_back(get_number(*r, "coverage"));
+      pool.v.push_back(get_number(*r, "mean_pool_depth"));
+      sq.v.push_back(get_number(*r, "wet_sq"));
+    }
+    std::sort(indices.begin(), indices.end());
+    rows.push_back({{"target", target},
+                    {"water", water},
+                    {"runs", indices},
+                    {"failed", failed},
+                    {"mu_peak", mu.json()},
+                    {"mu_ratio", ratio.json()},
+                    {"area_at_peak", area_peak.json()},
+                    {"area_normal", area_normal.json()},
+                    {"coverage", coverage.json()},
+                    {"mean_pool_depth", pool.json()},
+                    {"wet_sq", sq.json()}});
+  }
+  return rows;
+}
+
+}  // namespace wr

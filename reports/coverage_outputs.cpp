@@ -1,0 +1,166 @@
+#include "reports/coverage_outputs.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "lib/core/errors.hpp"
+#include "lib/io/atomic_output.hpp"
+#include "lib/io/hdf5_file.hpp"
+#include "reports/plot.hpp"
+
+namespace wr {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double num(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : kNaN; }
+
+// A table column: the statistic `stat` ("mean", "std", "ci95") of `column` per row.
+std::vector<double> column(const nlohmann::json& table, const std::string& name, const std::string& stat) {
+  std::vector<double> v;
+  for (const auto& row : table) v.push_back(name == "target" ? num(row["target"]) : num(row[name][stat]));
+  return v;
+}
+
+const char* kColumns[] = {"coverage", "mu_peak", "mu_ratio", "area_at_peak", "area_normal", "mean_pool_depth", "wet_sq"};
+
+std::vector<double> step_values(const nlohmann::json& steps, const char* key) {
+  std::vector<double> v;
+  for (const auto& s : steps) v.push_back(num(s[key]));
+  return v;
+}
+
+}  // namespace
+
+void write_coverage_hdf5(const std::string& path, const nlohmann::json& sweep) {
+  Hdf5Writer w(path);
+  w.write_text("/sweep", sweep.dump());
+  w.write_attr("/", "kind", std::string("wetroad coverage sweep"));
+  w.write_attr("/", "provenance", sweep["provenance"].dump());
+  w.create_group("/table");
+  const nlohmann::json& table = sweep["table"];
+  w.write_vector("/table/target", column(table, "target", ""));
+  for (const char* c : kColumns) {
+    w.write_vector(std::string("/table/") + c, column(table, c, "mean"));
+    w.write_vector(std::string("/table/") + c + "_std", column(table, c, "std"));
+    w.write_vector(std::string("/table/") + c + "_ci95", column(table, c, "ci95"));
+  }
+  w.create_group("/runs");
+  for (const auto& r : sweep["runs"]) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/runs/run-%04d", r["index"].get<int>());
+    const std::string g = name;
+    w.create_group(g);
+    w.write_attr(g, "record", r.dump());
+    if (r.contains("psd")) {
+      w.write_vector(g + "/psd_q", r["psd"]["q"].get<std::vector<double>>());
+      w.write_vector(g + "/psd_C", r["psd"]["C"].get<std::vector<double>>());
+    }
+    if (r.contains("contact")) {
+      const auto& steps = r["contact"]["steps"];
+      for (const char* k : {"ux", "uz", "mu", "fz", "fx", "area_fraction"})
+        w.write_vector(g + "/steps_" + k, step_values(steps, k));
+    }
+  }
+  w.commit();
+}
+
+nlohmann::json read_coverage_hdf5(const std::string& path) {
+  Hdf5Reader r(path);
+  if (r.attr_string("/", "kind").value_or("") != "wetroad coverage sweep")
+    throw InputError(path, "not a coverage sweep (written by `wetroad sweep-coverage --out`)");
+  try {
+    return nlohmann::json::parse(r.read_text("/sweep"));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path, std::string("corrupt /sweep record: ") + e.what());
+  }
+}
+
+void write_coverage_csv(const std::string& path, const nlohmann::json& table) {
+  std::ostringstream o;
+  o.precision(10);
+  o << "target,water,n,failed";
+  for (const char* c : kColumns) o << "," << c << "," << c << "_std," << c << "_ci95";
+  o << ",runs\n";
+  for (const auto& row : table) {
+    o << num(row["target"]) << "," << row["water"].get<std::string>() << "," << row["mu_peak"]["n"].get<int>() << ","
+      << row["failed"].get<int>();
+    for (const char* c : kColumns)
+      for (const char* s : {"mean", "std", "ci95"}) {
+        const double v = num(row[c][s]);
+        o << ",";
+        if (std::isfinite(v)) o << v;
+      }
+    o << ",";
+    for (std::size_t k = 0; k < row["runs"].size(); ++k) o << (k ? " " : "") << row["runs"][k].get<int>();
+    o << "\n";
+  }
+  write_text_atomically(path, o.str());
+}
+
+std::vector<std::string> write_coverage_plots(const std::string& dir, const nlohmann::json& sweep) {
+  std::filesystem::create_directories(dir);
+  const nlohmann::json& table = sweep["table"];
+  std::vector<double> cov = column(table, "coverage", "mean");
+  for (double& c : cov) c *= 100;
+  auto percent = [](std::vector<double> v) {
+    for (double& x : v) x *= 100;
+    return v;
+  };
+  std::vector<std::string> files;
+  const int n = sweep["spec"]["realizations"].get<int>();
+  const std::string ci = n > 1 ? " (mean, 95 % CI over " + std::to_string(n) + " realizations)" : "";
+  const std::string model = sweep["spec"]["scene"]["model"].get<std::string>();
+
+  PlotSpec mu{"Wet / dry static friction against water coverage (model " + model + ")", "water coverage [%]",
+              "mu_wet / mu_dry [%]", false, false, {}};
+  mu.series.push_back({"mu_wet / mu_dry" + ci, cov, percent(column(table, "mu_ratio", "mean")), "",
+                       percent(column(table, "mu_ratio", "ci95"))});
+  files.push_back(dir + "/mu_ratio.svg");
+  write_svg_plot(files.back(), mu);
+
+  PlotSpec area{"Contact area against water coverage (model " + model + ")", "water coverage [%]", "A/A0 [%]",
+                false, false, {}};
+  area.series.push_back({"after the normal load", cov, percent(column(table, "area_normal", "mean")), "",
+                         percent(column(table, "area_normal", "ci95"))});
+  area.series.push_back({"at the friction peak", cov, percent(column(table, "area_at_peak", "mean")), "",
+                         percent(column(table, "area_at_peak", "ci95"))});
+  files.push_back(dir + "/area.svg");
+  write_svg_plot(files.back(), area);
+
+  PlotSpec pool{"Mean depth of the pools against water coverage", "water coverage [%]", "mean pool depth [mm]", false,
+                false, {}};
+  std::vector<double> depth = column(table, "mean_pool_depth", "mean"), dci = column(table, "mean_pool_depth", "ci95");
+  for (double& d : depth) d *= 1e3;
+  for (double& d : dci) d *= 1e3;
+  pool.series.push_back({"mean pool depth" + ci, cov, depth, "", dci});
+  files.push_back(dir + "/pool_depth.svg");
+  write_svg_plot(files.back(), pool);
+
+  // Wet PSDs of the first realization (Figure 5.26).
+  PlotSpec psd{"PSD of the wet surfaces (realization 0)", "q [1/m]", "C(q) [m^4]", true, true, {}};
+  for (const auto& r : sweep["runs"]) {
+    if (r["realization"].get<int>() != 0 || !r.contains("psd")) continue;
+    PlotSeries s;
+    char label[64];
+    std::snprintf(label, sizeof label, "coverage %.0f %%", 100 * num(r["coverage"]));
+    s.label = label;
+    s.style = "lines";
+    const auto q = r["psd"]["q"].get<std::vector<double>>();
+    const auto c = r["psd"]["C"].get<std::vector<double>>();
+    for (std::size_t k = 0; k < q.size(); ++k)
+      if (q[k] > 0 && c[k] > 0) {
+        s.x.push_back(q[k]);
+        s.y.push_back(c[k]);
+      }
+    psd.series.push_back(std::move(s));
+  }
+  files.push_back(dir + "/wet_psd.svg");
+  write_svg_plot(files.back(), psd);
+  return files;
+}
+
+}  // namespace wr
