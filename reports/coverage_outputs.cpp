@@ -81,7 +81,7 @@ nlohmann::json read_coverage_hdf5(const std::string& path) {
 
 void write_coverage_csv(const std::string& path, const nlohmann::json& table) {
   std::ostringstream o;
-  o.precision(10);
+  o.precision(17);  // round-trip: a resumed or MPI sweep is compared to the digit
   o << "target,water,n,failed";
   for (const char* c : kColumns) o << "," << c << "," << c << "_std," << c << "_ci95";
   o << ",runs\n";

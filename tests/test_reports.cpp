@@ -23,8 +23,8 @@ TEST(Plot, WritesAnSvgWithTitleAxesAndSeries) {
   p.xlabel = "sigma*";
   p.ylabel = "A/A0";
   p.logx = true;
-  p.series.push_back({"grid 256", {0.01, 0.1, 1.0}, {0.02, 0.2, 0.9}, "linespoints"});
-  p.series.push_back({"Persson's kappa", {0.01, 1.0}, {0.016, 1.6}, "lines"});
+  p.series.push_back({"grid 256", {0.01, 0.1, 1.0}, {0.02, 0.2, 0.9}, "linespoints", {}});
+  p.series.push_back({"Persson's kappa", {0.01, 1.0}, {0.016, 1.6}, "lines", {}});
   write_svg_plot(out, p);
   std::ifstream f(out);
   std::stringstream ss;
@@ -38,7 +38,7 @@ TEST(Plot, WritesAnSvgWithTitleAxesAndSeries) {
   EXPECT_NE(svg.find("<path"), std::string::npos);    // something was drawn
   // Bad input: nothing written, the reason named.
   const std::string bad = (dir / "bad.svg").string();
-  p.series.push_back({"broken", {1, 2}, {1}, "lines"});
+  p.series.push_back({"broken", {1, 2}, {1}, "lines", {}});
   EXPECT_THROW(write_svg_plot(bad, p), std::runtime_error);
   EXPECT_FALSE(fs::exists(bad));
   std::size_t files = 0;

@@ -8,6 +8,7 @@
 
 #include "lib/core/errors.hpp"
 #include "roads/height_stats.hpp"
+#include "roads/mpd.hpp"
 #include "roads/spectrum.hpp"
 #include "roads/surface_import.hpp"
 
@@ -99,6 +100,9 @@ void CoverageRunner::load_realization(int r) {
   lim.tiling = spec_.tiling;
   lim.connectivity = spec_.connectivity;
   drained_limit_ = fill_water(ground_, lim).water.coverage;
+  const MpdResult mpd = mpd_of_map(ground_, std::vector<unsigned char>(ground_.size(), 0), {}, threads_);
+  ground_mpd_ = mpd.mpd;
+  ground_mpd_note_ = mpd.note;
   wall_surface_ = seconds_since(t0);
   loaded_ = r;
 }
@@ -107,7 +111,8 @@ nlohmann::json CoverageRunner::run(const CoverageRunKey& key) {
   const auto t0 = std::chrono::steady_clock::now();
   load_realization(key.realization);
   nlohmann::json rec = {{"index", key.index}, {"realization", key.realization}, {"seed", seed_},
-                        {"target", key.target}, {"drained_limit", drained_limit_}};
+                        {"target", key.target}, {"drained_limit", drained_limit_},
+                        {"ground_mpd", ground_mpd_}, {"ground_mpd_note", ground_mpd_note_}};
   HeightMap wet = ground_;
   const auto t_water = std::chrono::steady_clock::now();
   if (key.target == 0) {

@@ -15,7 +15,8 @@
 // (`<out>.runs/run-NNNN.json`): a killed sweep resumes without redoing them, and the results
 // do not depend on the rank count (each run is computed alone, with deterministic FFT plans).
 //
-// Run record (SI units; JSON): index, realization, seed, target, water ("dry" | "drained" |
+// Run record (SI units; JSON): index, realization, seed, ground_mpd (the dry surface's MPD, with
+// ground_mpd_note when the baseline or filter departs from ISO 13473-1), target, water ("dry" | "drained" |
 // "stagnant"), coverage, rain_depth, drained_limit, mean_pool_depth, max_pool_depth,
 // stored_volume, lakes, wet_sq, wet_rms_slope, psd {q, C}, contact {model, mu_peak, ux_peak,
 // area_at_peak, area_normal, fz_normal, failed, message, unknowns, steps [...], validity},
@@ -75,6 +76,8 @@ class CoverageRunner {
   HeightMap ground_;
   std::uint64_t seed_ = 0;
   double drained_limit_ = 0, wall_surface_ = 0;
+  double ground_mpd_ = 0;  // m, ISO 13473-1 over the map's rows and columns
+  std::string ground_mpd_note_;
 };
 
 // One row per target coverage: the realizations' mean, standard deviation and 95 % confidence

@@ -1,0 +1,63 @@
+// `wetroad report`: the self-contained HTML report (reports/html_report.hpp).
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "lib/core/errors.hpp"
+#include "reports/coverage_outputs.hpp"
+#include "reports/html_report.hpp"
+
+namespace wr::app {
+namespace {
+
+struct ReportCli {
+  std::vector<std::string> sweeps;
+  std::string measured, output, title = "wetroad report: wet friction";
+  double ifi_a = 0, ifi_b = 0, ifi_c = 0, ifi_tx = 0;
+  CLI::Option* ifi_b_opt = nullptr;
+  bool quiet = false;
+};
+
+int run_report(const ReportCli& c) {
+  ReportInput in;
+  in.title = c.title;
+  for (const auto& s : c.sweeps) in.sweeps.emplace_back(s, read_coverage_hdf5(s));
+  if (!c.measured.empty()) {
+    in.measured = read_measured_skid_csv(c.measured);
+    in.measured_path = c.measured;
+  }
+  if (c.ifi_b_opt->count() > 0) in.ifi = IfiConstants{c.ifi_a, c.ifi_b, c.ifi_c, c.ifi_tx};
+  write_html_report(c.output, in);
+  if (!c.quiet)
+    std::printf("wrote %s: %zu sweep(s)%s; open it in any browser (self-contained, offline)\n", c.output.c_str(),
+                in.sweeps.size(), in.measured.empty() ? "" : ", measured skid numbers");
+  return 0;
+}
+
+}  // namespace
+
+Command add_report(CLI::App& root) {
+  auto c = std::make_shared<ReportCli>();
+  CLI::App* s = root.add_subcommand("report", "write a self-contained HTML report of sweeps and skid numbers");
+  s->footer(
+      "One HTML file with the charts (gnuplot SVG, embedded), tables, the validity flags of every run and\n"
+      "the source of every number (sweep file and run group). With --measured, the skid-number comparison:\n"
+      "predicted SN40R = 100 mu against MPD next to the measured sites, the MPD of each peak, and the IFI\n"
+      "speed constant Sp = 14.2 + 89.7 MPD per site (F60 too when the device constants are given).\n"
+      "Example: wetroad report --sweep sweep.h5 --measured sites.csv -o report.html");
+  s->add_option("--sweep", c->sweeps, "coverage sweep result (wetroad sweep-coverage --out); repeatable")
+      ->required()
+      ->check(CLI::ExistingFile);
+  s->add_option("--measured", c->measured, "measured skid numbers: CSV site,mpd_mm,sn40r[,speed_kmh]")
+      ->check(CLI::ExistingFile);
+  s->add_option("--ifi-a", c->ifi_a, "IFI device constant A (F60 column; needs --ifi-b)");
+  c->ifi_b_opt = s->add_option("--ifi-b", c->ifi_b, "IFI device constant B");
+  s->add_option("--ifi-c", c->ifi_c, "IFI device constant C (ribbed tyre), with --ifi-tx");
+  s->add_option("--ifi-tx", c->ifi_tx, "texture measure Tx for the C term, mm");
+  s->add_option("--title", c->title, "report title")->capture_default_str();
+  s->add_option("-o,--output", c->output, "the HTML file (written atomically)")->required();
+  s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
+  return {s, [c] { return run_report(*c); }};
+}
+
+}  // namespace wr::app

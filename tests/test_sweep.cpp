@@ -1,0 +1,224 @@
+// Coverage sweep and report: the statistics against hand computations, the wet runs against the
+// water module's own contract, and the report's numbers against the HDF5 they come from.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "lib/core/errors.hpp"
+#include "lib/io/hdf5_file.hpp"
+#include "lib/sweep/coverage_sweep.hpp"
+#include "reports/coverage_outputs.hpp"
+#include "reports/html_report.hpp"
+#include "roads/height_stats.hpp"
+
+namespace wr {
+namespace {
+
+nlohmann::json record(int index, int realization, double target, double mu, double area, const char* status = "ok") {
+  return {{"index", index},
+          {"realization", realization},
+          {"target", target},
+          {"status", status},
+          {"water", target == 0 ? "dry" : "drained"},
+          {"coverage", target},
+          {"mean_pool_depth", 1e-4 * target},
+          {"wet_sq", 1e-4},
+          {"contact", {{"mu_peak", mu}, {"area_at_peak", area}, {"area_normal", area}}}};
+}
+
+// A run record less its wall-clock times: what must be identical between repeated runs.
+nlohmann::json without_timings(nlohmann::json r) {
+  r.erase("wall");
+  for (auto& st : r["contact"]["steps"]) st.erase("wall_s");
+  return r;
+}
+
+TEST(CoverageSweep, PlanIsRealizationMajor) {
+  CoverageSweepSpec s;
+  s.coverages = {0, 0.3};
+  s.realizations = 2;
+  const auto k = plan_runs(s);
+  ASSERT_EQ(k.size(), 4u);
+  EXPECT_EQ(k[1].realization, 0);
+  EXPECT_EQ(k[1].target, 0.3);
+  EXPECT_EQ(k[2].realization, 1);
+  EXPECT_EQ(k[3].index, 3);
+}
+
+// mu_ratio is taken per realization, then averaged; the CI is t(0.975, n-1) s / sqrt(n).
+TEST(CoverageSweep, TableStatisticsMatchHandComputation) {
+  const std::vector<nlohmann::json> runs = {record(0, 0, 0, 0.4, 0.3),  record(1, 0, 0.5, 0.2, 0.35),
+                                            record(2, 1, 0, 0.5, 0.3),  record(3, 1, 0.5, 0.4, 0.45),
+                                            record(4, 2, 0, 0.5, 0.3),  record(5, 2, 0.5, 0.1, 0.5, "failed")};
+  const nlohmann::json t = coverage_table(runs);
+  ASSERT_EQ(t.size(), 2u);
+  const auto& wet = t[1];
+  EXPECT_EQ(wet["failed"].get<int>(), 1);
+  EXPECT_EQ(wet["mu_ratio"]["n"].get<int>(), 2);
+  // ratios 0.5 and 0.8: mean 0.65, s = 0.3/sqrt(2), CI = 12.706 s / sqrt(2)
+  EXPECT_NEAR(wet["mu_ratio"]["mean"].get<double>(), 0.65, 1e-15);
+  EXPECT_NEAR(wet["mu_ratio"]["std"].get<double>(), 0.3 / std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(wet["mu_ratio"]["ci95"].get<double>(), 12.706 * 0.3 / 2, 1e-12);
+  EXPECT_NEAR(t[0]["mu_peak"]["mean"].get<double>(), 1.4 / 3, 1e-15);
+  EXPECT_EQ(wet["runs"], nlohmann::json({1, 3, 5}));
+  EXPECT_DOUBLE_EQ(student_t95(10), 2.228);
+  EXPECT_NEAR(student_t95(200), 1.972, 2e-3);
+}
+
+TEST(CoverageSweep, BadSpecsAreRefused) {
+  CoverageSweepSpec s;
+  s.surface_path = "x.h5";
+  s.scene.uz = 1e-3;
+  s.scene.ux = 1e-3;
+  s.coverages = {0.2, 0.1};
+  EXPECT_THROW(check_sweep_spec(s), InputError);
+  s.coverages = {0, 1.0};
+  EXPECT_THROW(check_sweep_spec(s), InputError);
+  s.coverages = {0, 0.5};
+  s.realizations = 3;  // a file has one realization
+  EXPECT_THROW(check_sweep_spec(s), InputError);
+  s.realizations = 1;
+  s.scene.model = ContactModel::analytic;  // no shear test
+  EXPECT_THROW(check_sweep_spec(s), InputError);
+}
+
+CoverageSweepSpec small_spectral_sweep() {
+  CoverageSweepSpec s;
+  SynthParams p;
+  p.nx = p.ny = 32;
+  p.dx = 1e-3;
+  p.h0 = 2e-4;
+  p.seed = 4;
+  s.synth = p;
+  s.coverages = {0, 0.15, 0.9};
+  s.scene.model = ContactModel::spectral;
+  s.scene.uz = 2e-3;
+  s.scene.ux = 1e-3;
+  s.scene.normal_steps = 2;
+  s.scene.shear_steps = 2;
+  s.scene.tolerance = 1e-4;
+  return s;
+}
+
+// Each run is the water module's fill of its target (drained below the drained limit, standing
+// water above) under a real contact run; pools lower the wet surface's roughness.
+TEST(CoverageSweep, RunsWetTheSurfaceAsTheWaterModuleSays) {
+  const CoverageSweepSpec s = small_spectral_sweep();
+  CoverageRunner runner(s, MPI_COMM_NULL, 1);
+  const auto keys = plan_runs(s);
+  std::vector<nlohmann::json> runs;
+  for (const auto& k : keys) runs.push_back(runner.run(k));
+  const double cell = 1.0 / (32 * 32);
+  EXPECT_EQ(runs[0]["water"], "dry");
+  EXPECT_EQ(runs[0]["status"], "ok") << runs[0]["message"];
+  const double limit = runs[0]["drained_limit"].get<double>();
+  ASSERT_GT(limit, 0.15);
+  ASSERT_LT(limit, 0.9);
+  EXPECT_EQ(runs[1]["water"], "drained");
+  EXPECT_NEAR(runs[1]["coverage"].get<double>(), 0.15, 2 * cell);
+  EXPECT_EQ(runs[2]["water"], "stagnant");
+  EXPECT_NEAR(runs[2]["coverage"].get<double>(), 0.9, 2 * cell);
+  EXPECT_GT(runs[2]["mean_pool_depth"].get<double>(), runs[1]["mean_pool_depth"].get<double>());
+  EXPECT_LT(runs[2]["wet_sq"].get<double>(), runs[0]["wet_sq"].get<double>());
+  for (const auto& r : runs) {
+    EXPECT_EQ(r["contact"]["model"], "spectral");
+    EXPECT_FALSE(r["contact"]["validity"]["valid"].get<bool>()) << "a periodic layer's friction must be flagged";
+    EXPECT_EQ(r["contact"]["steps"].size(), 4u);
+    EXPECT_GT(r["psd"]["q"].size(), 5u);
+  }
+  // The same run again (a fresh runner, as after a resume or on another rank): identical record.
+  CoverageRunner again(s, MPI_COMM_NULL, 2);
+  EXPECT_EQ(without_timings(again.run(keys[1])).dump(), without_timings(runs[1]).dump());
+}
+
+// The report's tables name their source run groups: each exists in the HDF5, and the printed
+// ratios are the HDF5 table's values. The document is self-contained.
+TEST(Report, EveryTableNumberTracesToTheHdf5) {
+  const CoverageSweepSpec s = small_spectral_sweep();
+  CoverageRunner runner(s, MPI_COMM_NULL, 1);
+  std::vector<nlohmann::json> runs;
+  for (const auto& k : plan_runs(s)) runs.push_back(runner.run(k));
+  const nlohmann::json sweep = {{"spec", sweep_spec_json(s)}, {"table", coverage_table(runs)}, {"runs", runs},
+                                {"failed_runs", 0}, {"provenance", {{"timings", {{"total", 1.0}, {"ranks", 1}}}}}};
+  const std::string dir = ::testing::TempDir() + "wetroad-report-test";
+  std::filesystem::create_directories(dir);
+  const std::string h5 = dir + "/sweep.h5", html = dir + "/report.html";
+  write_coverage_hdf5(h5, sweep);
+  ReportInput in;
+  in.sweeps.emplace_back(h5, read_coverage_hdf5(h5));
+  EXPECT_EQ(in.sweeps[0].second["table"], sweep["table"]);  // the HDF5 round trip is exact
+  write_html_report(html, in);
+  std::ifstream f(html);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string doc = ss.str();
+  EXPECT_EQ(doc.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(doc.find("</html>"), std::string::npos);
+  EXPECT_EQ(doc.find("src="), std::string::npos) << "external resource";
+  std::size_t svgs = 0;
+  for (auto p = doc.find("<svg"); p != std::string::npos; p = doc.find("<svg", p + 1)) ++svgs;
+  EXPECT_EQ(svgs, 5u);  // mu ratio, area, pool depth, wet PSD, skid numbers
+  const std::regex href("href=['\"]([^'\"]*)['\"]");
+  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), href); it != std::sregex_iterator(); ++it)
+    EXPECT_EQ((*it)[1].str().rfind("#", 0), 0u) << "non-local link " << (*it)[1].str();
+  Hdf5Reader r(h5);
+  const std::regex group("/runs/run-[0-9]{4}");
+  std::set<std::string> named;
+  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), group); it != std::sregex_iterator(); ++it)
+    named.insert(it->str());
+  EXPECT_EQ(named.size(), runs.size());
+  for (const auto& g : named) EXPECT_TRUE(r.has_group(g)) << g;
+  std::vector<double> ratio(r.dims("/table/mu_ratio")[0]);
+  r.read_doubles("/table/mu_ratio", ratio.data(), ratio.size());
+  for (double v : ratio) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1f %%", 100 * v);
+    EXPECT_NE(doc.find(b), std::string::npos) << b;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Report, PeakOfAQuadraticAndItsFallback) {
+  const std::vector<double> x = {0.2, 0.6, 1.0, 1.4, 1.8};
+  std::vector<double> y;
+  for (double v : x) y.push_back(50 - 20 * (v - 1.1) * (v - 1.1));
+  const PeakEstimate p = peak_position(x, y);
+  EXPECT_EQ(p.method, "quadratic fit");
+  EXPECT_NEAR(p.mpd_mm, 1.1, 1e-9);
+  EXPECT_NEAR(p.value, 50, 1e-9);
+  const PeakEstimate m = peak_position({0.2, 0.6, 1.0}, {1, 2, 3});  // rising: no interior maximum
+  EXPECT_EQ(m.method, "largest value");
+  EXPECT_EQ(m.mpd_mm, 1.0);
+}
+
+TEST(Report, MeasuredCsvErrorsNameTheLine) {
+  const std::string path = ::testing::TempDir() + "wetroad-skid.csv";
+  auto write = [&](const std::string& text) {
+    std::ofstream(path) << text;
+  };
+  write("site,mpd_mm,sn40r,speed_kmh\nA,0.5,40,64\nB,0.9,55,\n");
+  const auto ok = read_measured_skid_csv(path);
+  ASSERT_EQ(ok.size(), 2u);
+  EXPECT_EQ(ok[0].site, "A");
+  EXPECT_DOUBLE_EQ(*ok[0].speed_kmh, 64);
+  EXPECT_FALSE(ok[1].speed_kmh.has_value());
+  write("site,mpd,sn40r\nA,0.5,40\n");
+  EXPECT_THROW(read_measured_skid_csv(path), InputError);
+  write("site,mpd_mm,sn40r\nA,0.5,40\nB,x,40\n");
+  try {
+    read_measured_skid_csv(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+  }
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace wr
