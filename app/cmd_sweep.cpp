@@ -219,6 +219,10 @@ int run_sweep(const SweepCli& c) {
                 c.plots.c_str(), dir.c_str());
     std::printf("  wall %.1f s on %d rank(s)\n", wall, ranks);
   }
+  for (const auto& r : runs)
+    if (r["target"] == 0 && r["status"] == "ok" && !(r["contact"]["mu_peak"].get<double>() > 0))
+      std::fprintf(stderr, "wetroad: warning: realization %d has no positive dry friction (mu %.3g): no wet/dry ratios "
+                           "for it\n", r["realization"].get<int>(), r["contact"]["mu_peak"].get<double>());
   if (failed_total > 0) {
     std::fprintf(stderr, "wetroad: error: %d of %zu runs failed (kept in the outputs with their reasons, left out of "
                          "the means)\n", failed_total, runs.size());

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "lib/io/atomic_output.hpp"
 
@@ -33,24 +34,39 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
   g << "set grid\nset key top left noenhanced\n";
   if (spec.logx) g << "set logscale x\n";
   if (spec.logy) g << "set logscale y\n";
+  // Series without a finite point are left out (gnuplot refuses empty data); a chart with no
+  // point at all says so instead of failing.
+  std::vector<std::size_t> drawn;
   for (std::size_t s = 0; s < spec.series.size(); ++s) {
     const PlotSeries& ps = spec.series[s];
     if (ps.x.size() != ps.y.size() || (!ps.yerr.empty() && ps.yerr.size() != ps.y.size()))
       throw std::runtime_error(path + ": series '" + ps.label + "' has x, y (and yerr) of different lengths");
-    g << "$d" << s << " << EOD\n";
+    std::ostringstream d;
+    d.precision(17);
+    std::size_t points = 0;
     for (std::size_t k = 0; k < ps.x.size(); ++k)
-      if (std::isfinite(ps.x[k]) && std::isfinite(ps.y[k])) {
-        g << ps.x[k] << " " << ps.y[k];
-        if (!ps.yerr.empty()) g << " " << (std::isfinite(ps.yerr[k]) ? ps.yerr[k] : 0.0);
-        g << "\n";
+      if (std::isfinite(ps.x[k]) && std::isfinite(ps.y[k]) && (!spec.logx || ps.x[k] > 0) && (!spec.logy || ps.y[k] > 0)) {
+        d << ps.x[k] << " " << ps.y[k];
+        if (!ps.yerr.empty()) d << " " << (std::isfinite(ps.yerr[k]) ? ps.yerr[k] : 0.0);
+        d << "\n";
+        ++points;
       }
-    g << "EOD\n";
+    if (points == 0) continue;
+    g << "$d" << s << " << EOD\n" << d.str() << "EOD\n";
+    drawn.push_back(s);
   }
-  g << "plot ";
-  for (std::size_t s = 0; s < spec.series.size(); ++s)
-    g << (s ? ", " : "") << "$d" << s
-      << (spec.series[s].yerr.empty() ? " using 1:2 with " + spec.series[s].style : std::string(" using 1:2:3 with yerrorlines"))
-      << " lw 2 title " << quoted(spec.series[s].label);
+  if (drawn.empty()) {
+    g << "unset logscale\nset xrange [0:1]\nset yrange [0:1]\nset label 1 'no data to draw' at graph 0.5,0.5 center\n"
+      << "plot 2 notitle";
+  } else {
+    g << "plot ";
+    for (std::size_t i = 0; i < drawn.size(); ++i) {
+      const PlotSeries& ps = spec.series[drawn[i]];
+      g << (i ? ", " : "") << "$d" << drawn[i]
+        << (ps.yerr.empty() ? " using 1:2 with " + ps.style : std::string(" using 1:2:3 with yerrorlines"))
+        << " lw 2 title " << quoted(ps.label);
+    }
+  }
   g << "\nunset output\n";
   const std::string script = temporary_sibling(path) + ".gp";
   {

@@ -239,8 +239,9 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
       water = (*r)["water"].get<std::string>();
       const double m = (*r)["contact"]["mu_peak"].get<double>();
       mu.v.push_back(m);
+      // A ratio to a dry friction that is not positive means nothing (a scene without friction).
       const auto d = mu_dry.find((*r)["realization"].get<int>());
-      if (d != mu_dry.end() && d->second != 0) ratio.v.push_back(m / d->second);
+      if (d != mu_dry.end() && d->second > 0) ratio.v.push_back(m / d->second);
       area_peak.v.push_back(get_number((*r)["contact"], "area_at_peak"));
       area_normal.v.push_back(get_number((*r)["contact"], "area_normal"));
       coverage.v.push_back(get_number(*r, "coverage"));

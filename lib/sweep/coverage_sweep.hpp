@@ -83,7 +83,8 @@ class CoverageRunner {
 // One row per target coverage: the realizations' mean, standard deviation and 95 % confidence
 // half-width (Student t) of mu_peak, mu_ratio (mu / the same realization's dry mu), area at
 // the peak and after the normal load, achieved coverage, mean pool depth and wet rms height;
-// n counts the runs that finished. Runs are records as above, in any order.
+// n counts the runs that finished. mu_ratio leaves out realizations whose dry mu is not positive
+// (its n says how many remain). Runs are records as above, in any order.
 nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs);
 
 // Two-sided 95 % Student t quantile for `dof` degrees of freedom (>= 1).
