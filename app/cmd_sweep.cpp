@@ -18,6 +18,7 @@
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
+#include "lib/sweep/sweep_engine.hpp"
 #include "reports/coverage_outputs.hpp"
 #include "wetroad/version.hpp"
 
@@ -36,11 +37,6 @@ struct SweepCli {
 };
 
 std::string checkpoint_dir(const std::string& out) { return out + ".runs"; }
-std::string run_file(const std::string& dir, int index) {
-  char name[32];
-  std::snprintf(name, sizeof name, "/run-%04d.json", index);
-  return dir + name;
-}
 
 CoverageSweepSpec make_spec(const SweepCli& c) {
   CoverageSweepSpec s;
@@ -70,47 +66,6 @@ CoverageSweepSpec make_spec(const SweepCli& c) {
   return s;
 }
 
-std::optional<nlohmann::json> read_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return std::nullopt;  // a torn file cannot exist (atomic writes); treat as not finished
-  }
-}
-
-// The finished runs of this sweep in the checkpoint directory (index -> record).
-std::map<int, nlohmann::json> finished_runs(const std::string& dir, const std::vector<CoverageRunKey>& keys) {
-  std::map<int, nlohmann::json> done;
-  for (const auto& k : keys)
-    if (auto r = read_json(run_file(dir, k.index)); r && r->value("index", -1) == k.index) done[k.index] = *r;
-  return done;
-}
-
-// Every rank checks the same files before rank 0 writes anything, so all agree on the outcome.
-void check_checkpoint(const SweepCli& c, const nlohmann::json& spec) {
-  const std::string dir = checkpoint_dir(c.out);
-  const auto stored = read_json(dir + "/sweep.json");
-  if (!c.resume) {
-    if (std::filesystem::exists(dir))
-      throw InputError(dir, "a checkpoint of an earlier sweep exists: continue it with --resume, or remove it");
-    return;
-  }
-  if (!stored) return;  // nothing to resume: a fresh start
-  if ((*stored)["spec"] != spec)
-    throw InputError(dir + "/sweep.json", "--resume with different sweep parameters than the checkpointed sweep");
-}
-
-std::string eta_text(double seconds) {
-  char b[32];
-  if (!std::isfinite(seconds)) return "?";
-  if (seconds < 120) std::snprintf(b, sizeof b, "%.0f s", seconds);
-  else if (seconds < 7200) std::snprintf(b, sizeof b, "%.1f min", seconds / 60);
-  else std::snprintf(b, sizeof b, "%.1f h", seconds / 3600);
-  return b;
-}
-
 void print_table(const nlohmann::json& table) {
   auto v = [](const nlohmann::json& j) { return j.is_number() ? j.get<double>() : NAN; };
   std::printf("  %8s %9s %8s %10s %10s %16s %10s %10s %12s %4s %6s\n", "target", "water", "coverage", "mu_peak",
@@ -137,61 +92,49 @@ int run_sweep(const SweepCli& c) {
   const bool talk = rank == 0 && !c.quiet;
   const auto t0 = std::chrono::steady_clock::now();
 
-  const std::string dir = checkpoint_dir(c.out);
-  check_checkpoint(c, spec_json);
+  const SweepCheckpoint cp(checkpoint_dir(c.out));
+  const std::string& dir = cp.dir();
+  cp.check(spec_json, c.resume);
   MPI_Barrier(PETSC_COMM_WORLD);
-  if (rank == 0) {
-    std::filesystem::create_directories(dir);
-    write_text_atomically(dir + "/sweep.json", nlohmann::json({{"spec", spec_json}, {"version", kVersion}}).dump(2));
-  }
+  if (rank == 0) cp.start(spec_json);
   const std::vector<CoverageRunKey> keys = plan_runs(spec);
-  const std::map<int, nlohmann::json> before = finished_runs(dir, keys);
-  std::vector<CoverageRunKey> pending;
+  const auto before = cp.finished(int(keys.size()));
+  const std::size_t finished_before = before.size();
+  std::vector<int> pending;
   for (const auto& k : keys)
-    if (!before.count(k.index)) pending.push_back(k);
+    if (!before.count(k.index)) pending.push_back(k.index);
   if (talk) {
     std::printf("coverage sweep: %zu runs (%zu coverages x %d realizations), model %s, %d rank(s)\n", keys.size(),
                 spec.coverages.size(), spec.realizations, model_name(spec.scene.model), ranks);
-    if (!before.empty()) std::printf("  resuming: %zu runs finished earlier are kept, %zu to do\n", before.size(), pending.size());
+    if (finished_before > 0)
+      std::printf("  resuming: %zu runs finished earlier are kept, %zu to do\n", finished_before, pending.size());
     if (spec.scene.model == ContactModel::spectral)
       std::fprintf(stderr, "wetroad: warning: the spectral model is laterally periodic: its friction is not a finite "
                            "block's (flagged in every run's validity)\n");
     std::fflush(stdout);
   }
-  // Round-robin over ranks: each run alone on one rank (PETSC_COMM_SELF), so the answer does
-  // not depend on the rank count; one rank per core, so threads only without MPI.
+  // Each run alone on one rank (PETSC_COMM_SELF), so the answer does not depend on the rank
+  // count; one rank per core, so threads only without MPI.
   const int threads = ranks > 1 ? 1 : (c.threads > 0 ? c.threads : hardware_threads());
   CoverageRunner runner(spec, PETSC_COMM_SELF, threads);
-  std::size_t mine = 0, done_mine = 0;
-  for (std::size_t i = rank; i < pending.size(); i += ranks) ++mine;
-  int failures = 0;
-  for (std::size_t i = rank; i < pending.size(); i += ranks) {
-    const CoverageRunKey& k = pending[i];
-    nlohmann::json rec = runner.run(k);
-    rec["rank"] = rank;
-    write_text_atomically(run_file(dir, k.index), rec.dump(1) + "\n");
-    ++done_mine;
-    if (rec["status"] != "ok") {
-      ++failures;
-      std::fprintf(stderr, "wetroad: warning: run %d (coverage %.3g, realization %d) failed: %s\n", k.index, k.target,
-                   k.realization, rec["message"].get<std::string>().c_str());
-    }
-    if (!c.quiet) {
-      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const double left = el / double(done_mine) * double(mine - done_mine);
-      const nlohmann::json& mu = rec.contains("contact") ? rec["contact"]["mu_peak"] : nlohmann::json(nullptr);
-      std::fprintf(stderr, "  [rank %d] run %d/%zu: realization %d, coverage %.1f%% (%s) mu %s, %.1f s; this rank: %zu/%zu done, about %s left\n",
-                   rank, k.index + 1, keys.size(), k.realization, 100 * rec.value("coverage", 0.0),
-                   rec.value("water", "-").c_str(), mu.is_number() ? std::to_string(mu.get<double>()).c_str() : "-",
-                   rec["wall"]["total"].get<double>(), done_mine, mine, eta_text(left).c_str());
-    }
-  }
-  MPI_Barrier(PETSC_COMM_WORLD);
-  int all_failures = 0;
-  MPI_Allreduce(&failures, &all_failures, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  const int all_failures = run_pending(
+      cp, pending, PETSC_COMM_WORLD, [&](int i) { return runner.run(keys[std::size_t(i)]); },
+      [&](const SweepRunDone& d) {
+        const nlohmann::json& rec = *d.record;
+        const CoverageRunKey& k = keys[std::size_t(d.index)];
+        if (rec["status"] != "ok")
+          std::fprintf(stderr, "wetroad: warning: run %d (coverage %.3g, realization %d) failed: %s\n", k.index,
+                       k.target, k.realization, rec["message"].get<std::string>().c_str());
+        if (c.quiet) return;
+        const nlohmann::json& mu = rec.contains("contact") ? rec["contact"]["mu_peak"] : nlohmann::json(nullptr);
+        std::fprintf(stderr, "  [rank %d] run %d/%zu: realization %d, coverage %.1f%% (%s) mu %s, %.1f s; about %s left\n",
+                     rank, k.index + 1, keys.size(), k.realization, 100 * rec.value("coverage", 0.0),
+                     rec.value("water", "-").c_str(), mu.is_number() ? std::to_string(mu.get<double>()).c_str() : "-",
+                     rec["wall"]["total"].get<double>(), duration_text(d.seconds_left).c_str());
+      });
   if (rank != 0) return all_failures > 0 ? 3 : 0;
 
-  const std::map<int, nlohmann::json> done = finished_runs(dir, keys);
+  const std::map<int, nlohmann::json> done = cp.finished(int(keys.size()));
   std::vector<nlohmann::json> runs;
   for (const auto& [i, r] : done) runs.push_back(r);
   if (runs.size() != keys.size()) throw std::runtime_error("sweep: " + std::to_string(keys.size() - runs.size()) + " runs missing after the sweep");
