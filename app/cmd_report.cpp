@@ -4,7 +4,7 @@
 
 #include "app/commands.hpp"
 #include "lib/core/errors.hpp"
-#include "reports/coverage_outputs.hpp"
+#include "reports/sweep_outputs.hpp"
 #include "reports/html_report.hpp"
 
 namespace wr::app {
@@ -21,7 +21,7 @@ struct ReportCli {
 int run_report(const ReportCli& c) {
   ReportInput in;
   in.title = c.title;
-  for (const auto& s : c.sweeps) in.sweeps.emplace_back(s, read_coverage_hdf5(s));
+  for (const auto& s : c.sweeps) in.sweeps.emplace_back(s, read_sweep_hdf5(s, coverage_layout()));
   if (!c.measured.empty()) {
     in.measured = read_measured_skid_csv(c.measured);
     in.measured_path = c.measured;

@@ -19,7 +19,7 @@
 #include "lib/io/atomic_output.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
 #include "lib/sweep/sweep_engine.hpp"
-#include "reports/coverage_outputs.hpp"
+#include "reports/sweep_outputs.hpp"
 #include "wetroad/version.hpp"
 
 namespace wr::app {
@@ -150,8 +150,8 @@ int run_sweep(const SweepCli& c) {
   prov.timings = {{"total", wall}, {"ranks", ranks}, {"runs_this_invocation", pending.size()}};
   const nlohmann::json sweep = {{"spec", spec_json}, {"table", table}, {"runs", runs}, {"failed_runs", failed_total},
                                 {"checkpoint", dir}, {"provenance", prov.to_json()}};
-  write_coverage_hdf5(c.out, sweep);
-  if (!c.csv.empty()) write_coverage_csv(c.csv, table);
+  write_sweep_hdf5(c.out, sweep, coverage_layout());
+  if (!c.csv.empty()) write_sweep_csv(c.csv, table, coverage_layout());
   if (!c.json.empty()) write_text_atomically(c.json, sweep.dump(1) + "\n");
   std::vector<std::string> charts;
   if (!c.plots.empty()) charts = write_coverage_plots(c.plots, sweep);

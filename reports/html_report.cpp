@@ -12,7 +12,7 @@
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
-#include "reports/coverage_outputs.hpp"
+#include "reports/sweep_outputs.hpp"
 #include "reports/plot.hpp"
 #include "wetroad/version.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 // `wetroad report`: one self-contained HTML file (inline CSS and SVG charts drawn by gnuplot,
-// no external reference, readable offline) from coverage sweeps (reports/coverage_outputs.hpp)
+// no external reference, readable offline) from coverage sweeps (reports/sweep_outputs.hpp)
 // and, optionally, measured skid numbers.
 //
 // Sections: the scene and model of every sweep with the validity flags of every run; friction
@@ -35,7 +35,7 @@ struct IfiConstants {
 };
 
 struct ReportInput {
-  std::vector<std::pair<std::string, nlohmann::json>> sweeps;  // file, read_coverage_hdf5()
+  std::vector<std::pair<std::string, nlohmann::json>> sweeps;  // file, read_sweep_hdf5(, coverage_layout())
   std::vector<MeasuredSkid> measured;
   std::string measured_path;
   std::optional<IfiConstants> ifi;

@@ -14,7 +14,7 @@
 #include "lib/core/errors.hpp"
 #include "lib/io/hdf5_file.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
-#include "reports/coverage_outputs.hpp"
+#include "reports/sweep_outputs.hpp"
 #include "reports/html_report.hpp"
 #include "roads/height_stats.hpp"
 
@@ -150,9 +150,9 @@ TEST(Report, EveryTableNumberTracesToTheHdf5) {
   const std::string dir = ::testing::TempDir() + "wetroad-report-test";
   std::filesystem::create_directories(dir);
   const std::string h5 = dir + "/sweep.h5", html = dir + "/report.html";
-  write_coverage_hdf5(h5, sweep);
+  write_sweep_hdf5(h5, sweep, coverage_layout());
   ReportInput in;
-  in.sweeps.emplace_back(h5, read_coverage_hdf5(h5));
+  in.sweeps.emplace_back(h5, read_sweep_hdf5(h5, coverage_layout()));
   EXPECT_EQ(in.sweeps[0].second["table"], sweep["table"]);  // the HDF5 round trip is exact
   write_html_report(html, in);
   std::ifstream f(html);

@@ -251,6 +251,7 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
     std::sort(indices.begin(), indices.end());
     rows.push_back({{"target", target},
                     {"water", water},
+                    {"label", water},
                     {"runs", indices},
                     {"failed", failed},
                     {"mu_peak", mu.json()},

@@ -1,4 +1,4 @@
-#include "reports/coverage_outputs.hpp"
+#include "reports/sweep_outputs.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -18,14 +18,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double num(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : kNaN; }
 
-// A table column: the statistic `stat` ("mean", "std", "ci95") of `column` per row.
+// A table column: the statistic `stat` ("mean", "std", "ci95"; "" for a plain number) per row.
 std::vector<double> column(const nlohmann::json& table, const std::string& name, const std::string& stat) {
   std::vector<double> v;
-  for (const auto& row : table) v.push_back(name == "target" ? num(row["target"]) : num(row[name][stat]));
+  for (const auto& row : table) v.push_back(stat.empty() ? num(row[name]) : num(row[name][stat]));
   return v;
 }
-
-const char* kColumns[] = {"coverage", "mu_peak", "mu_ratio", "area_at_peak", "area_normal", "mean_pool_depth", "wet_sq"};
 
 std::vector<double> step_values(const nlohmann::json& steps, const char* key) {
   std::vector<double> v;
@@ -35,18 +33,31 @@ std::vector<double> step_values(const nlohmann::json& steps, const char* key) {
 
 }  // namespace
 
-void write_coverage_hdf5(const std::string& path, const nlohmann::json& sweep) {
+const SweepTableLayout& coverage_layout() {
+  static const SweepTableLayout l{"wetroad coverage sweep", "target",
+                                  {"coverage", "mu_peak", "mu_ratio", "area_at_peak", "area_normal", "mean_pool_depth",
+                                   "wet_sq"}};
+  return l;
+}
+
+const SweepTableLayout& roughness_layout() {
+  static const SweepTableLayout l{"wetroad roughness sweep", "value",
+                                  {"h0", "rms_slope", "mu_peak", "area_at_peak", "area_normal", "kappa"}};
+  return l;
+}
+
+void write_sweep_hdf5(const std::string& path, const nlohmann::json& sweep, const SweepTableLayout& layout) {
   Hdf5Writer w(path);
   w.write_text("/sweep", sweep.dump());
-  w.write_attr("/", "kind", std::string("wetroad coverage sweep"));
+  w.write_attr("/", "kind", layout.kind);
   w.write_attr("/", "provenance", sweep["provenance"].dump());
   w.create_group("/table");
   const nlohmann::json& table = sweep["table"];
-  w.write_vector("/table/target", column(table, "target", ""));
-  for (const char* c : kColumns) {
-    w.write_vector(std::string("/table/") + c, column(table, c, "mean"));
-    w.write_vector(std::string("/table/") + c + "_std", column(table, c, "std"));
-    w.write_vector(std::string("/table/") + c + "_ci95", column(table, c, "ci95"));
+  w.write_vector("/table/" + layout.x, column(table, layout.x, ""));
+  for (const auto& c : layout.stats) {
+    w.write_vector("/table/" + c, column(table, c, "mean"));
+    w.write_vector("/table/" + c + "_std", column(table, c, "std"));
+    w.write_vector("/table/" + c + "_ci95", column(table, c, "ci95"));
   }
   w.create_group("/runs");
   for (const auto& r : sweep["runs"]) {
@@ -68,10 +79,11 @@ void write_coverage_hdf5(const std::string& path, const nlohmann::json& sweep) {
   w.commit();
 }
 
-nlohmann::json read_coverage_hdf5(const std::string& path) {
+nlohmann::json read_sweep_hdf5(const std::string& path, const SweepTableLayout& layout) {
   Hdf5Reader r(path);
-  if (r.attr_string("/", "kind").value_or("") != "wetroad coverage sweep")
-    throw InputError(path, "not a coverage sweep (written by `wetroad sweep-coverage --out`)");
+  const std::string kind = r.attr_string("/", "kind").value_or("");
+  if (kind != layout.kind)
+    throw InputError(path, "not a " + layout.kind.substr(8) + (kind.empty() ? "" : " (it is a " + kind.substr(8) + ")"));
   try {
     return nlohmann::json::parse(r.read_text("/sweep"));
   } catch (const nlohmann::json::exception& e) {
@@ -79,16 +91,16 @@ nlohmann::json read_coverage_hdf5(const std::string& path) {
   }
 }
 
-void write_coverage_csv(const std::string& path, const nlohmann::json& table) {
+void write_sweep_csv(const std::string& path, const nlohmann::json& table, const SweepTableLayout& layout) {
   std::ostringstream o;
   o.precision(17);  // round-trip: a resumed or MPI sweep is compared to the digit
-  o << "target,water,n,failed";
-  for (const char* c : kColumns) o << "," << c << "," << c << "_std," << c << "_ci95";
+  o << layout.x << ",label,n,failed";
+  for (const auto& c : layout.stats) o << "," << c << "," << c << "_std," << c << "_ci95";
   o << ",runs\n";
   for (const auto& row : table) {
-    o << num(row["target"]) << "," << row["water"].get<std::string>() << "," << row["mu_peak"]["n"].get<int>() << ","
+    o << num(row[layout.x]) << "," << row.value("label", "") << "," << row["mu_peak"]["n"].get<int>() << ","
       << row["failed"].get<int>();
-    for (const char* c : kColumns)
+    for (const auto& c : layout.stats)
       for (const char* s : {"mean", "std", "ci95"}) {
         const double v = num(row[c][s]);
         o << ",";
