@@ -1,12 +1,11 @@
-// `wetroad sweep-coverage`: friction against water coverage (lib/sweep/coverage_sweep.hpp).
-// Runs are spread over MPI ranks, checkpointed one file per run, resumable (--resume).
+// `wetroad sweep-coverage` (lib/sweep/coverage_sweep.hpp) and `wetroad sweep-roughness`
+// (lib/sweep/roughness_sweep.hpp). Runs are spread over MPI ranks, checkpointed one file per
+// run, resumable (--resume): lib/sweep/sweep_engine.hpp.
 #include <mpi.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 
@@ -18,27 +17,162 @@
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
+#include "lib/sweep/roughness_sweep.hpp"
 #include "lib/sweep/sweep_engine.hpp"
 #include "reports/sweep_outputs.hpp"
-#include "wetroad/version.hpp"
 
 namespace wr::app {
 namespace {
 
-struct SweepCli {
-  std::string surface, out, csv, json, plots, model = "fem", tiling = "torus";
+// The options every sweep shares: the contact scene and the outputs.
+struct SweepCommonCli {
+  std::string model = "fem", out, csv, json, plots;
+  ContactScene scene;
+  int threads = 0;
+  bool resume = false, quiet = false;
+};
+
+void add_common_options(CLI::App& s, SweepCommonCli& c) {
+  s.add_option("--model", c.model, "contact model: fem (finite block) or spectral (periodic layer)")->capture_default_str();
+  s.add_option("--uz", c.scene.uz, "final normal displacement of the block's top, m")->required();
+  s.add_option("--ux", c.scene.ux, "final tangential displacement of the top, m")->required();
+  s.add_option("--steps", c.scene.normal_steps, "normal load steps")->capture_default_str();
+  s.add_option("--shear-steps", c.scene.shear_steps, "shear steps")->capture_default_str();
+  s.add_option("--refine", c.scene.refine, "contact-face spacing = surface spacing / refine")->capture_default_str();
+  s.add_option("--E", c.scene.young, "Young's modulus, Pa")->capture_default_str();
+  s.add_option("--nu", c.scene.poisson, "Poisson's ratio")->capture_default_str();
+  s.add_option("--height", c.scene.height, "block height (spectral: layer thickness), m; 0 = a cube")->capture_default_str();
+  s.add_option("--tol", c.scene.tolerance, "relative change per geometry (Signorini) iteration")->capture_default_str();
+  s.add_option("--spectral-tol", c.scene.spectral_tolerance, "spectral normal solver tolerance")->capture_default_str();
+  s.add_option("--max-iterations", c.scene.max_iterations, "per step (0: the model's default)");
+  s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)");
+  s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->required();
+  s.add_option("--csv", c.csv, "also write the table as CSV");
+  s.add_option("--json", c.json, "also write everything as JSON");
+  s.add_option("--plots", c.plots, "directory for the charts (SVG)");
+  s.add_flag("--resume", c.resume, "continue the sweep checkpointed in OUT.runs/ (same parameters)");
+  s.add_flag("-q,--quiet", c.quiet, "print nothing but warnings and errors");
+}
+
+ContactModel parse_sweep_model(const std::string& name) {
+  try {
+    return parse_model(name);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--model", e.what());
+  }
+}
+
+// What distinguishes one sweep kind from the other in the driver below.
+struct SweepKind {
+  std::string command;                       // for the provenance
+  const SweepTableLayout* layout = nullptr;
+  nlohmann::json spec;
+  int runs = 0;
+  std::string headline;                      // printed at the start
+  std::function<nlohmann::json(int index, int threads)> run;
+  std::function<std::string(const nlohmann::json& record)> describe;  // progress line
+  std::function<nlohmann::json(const std::vector<nlohmann::json>&)> table;
+  std::function<void(nlohmann::json& sweep)> extend;         // extra entries (thesis rows), may be empty
+  std::function<std::vector<std::string>(const std::string& dir, const nlohmann::json& sweep)> plots;
+  std::function<void(const nlohmann::json& sweep)> print;
+};
+
+// PETSc/MPI start, checkpoint, runs over the ranks, then (rank 0) the table and every output.
+int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
+  int argc = 1;
+  char name[] = "wetroad";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  PetscSession petsc(&argc, &argv);
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  const bool talk = rank == 0 && !c.quiet;
+  const auto t0 = std::chrono::steady_clock::now();
+
+  const SweepCheckpoint cp(c.out + ".runs");
+  cp.check(k.spec, c.resume);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (rank == 0) cp.start(k.spec);
+  const auto before = cp.finished(k.runs);
+  std::vector<int> pending;
+  for (int i = 0; i < k.runs; ++i)
+    if (!before.count(i)) pending.push_back(i);
+  if (talk) {
+    std::printf("%s, %d rank(s)\n", k.headline.c_str(), ranks);
+    if (!before.empty()) std::printf("  resuming: %zu runs finished earlier are kept, %zu to do\n", before.size(), pending.size());
+    std::fflush(stdout);
+  }
+  if (rank == 0 && k.spec["scene"]["model"] == "spectral")
+    std::fprintf(stderr, "wetroad: warning: the spectral model is laterally periodic: its friction is not a finite "
+                         "block's (flagged in every run's validity)\n");
+  // Each run alone on one rank (PETSC_COMM_SELF), so the answer does not depend on the rank
+  // count; one rank per core, so threads only without MPI.
+  const int threads = ranks > 1 ? 1 : (c.threads > 0 ? c.threads : hardware_threads());
+  const int all_failures = run_pending(
+      cp, pending, PETSC_COMM_WORLD, [&](int i) { return k.run(i, threads); },
+      [&](const SweepRunDone& d) {
+        const nlohmann::json& rec = *d.record;
+        if (rec["status"] != "ok")
+          std::fprintf(stderr, "wetroad: warning: run %d failed: %s\n", d.index, rec["message"].get<std::string>().c_str());
+        if (!c.quiet)
+          std::fprintf(stderr, "  [rank %d] run %d/%d: %s, %.1f s; about %s left\n", rank, d.index + 1, k.runs,
+                       k.describe(rec).c_str(), rec["wall"]["total"].get<double>(), duration_text(d.seconds_left).c_str());
+      });
+  if (rank != 0) return all_failures > 0 ? 3 : 0;
+
+  std::vector<nlohmann::json> runs;
+  for (auto& [i, r] : cp.finished(k.runs)) runs.push_back(std::move(r));
+  if (int(runs.size()) != k.runs)
+    throw std::runtime_error("sweep: " + std::to_string(k.runs - int(runs.size())) + " runs missing after the sweep");
+  const nlohmann::json table = k.table(runs);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  int failed_total = 0;
+  for (const auto& r : runs) failed_total += r["status"] != "ok";
+  Provenance prov;
+  prov.command = k.command;
+  prov.inputs = k.spec.contains("surface") ? k.spec["surface"] : nlohmann::json::object();
+  prov.parameters = k.spec;
+  prov.model = k.spec["scene"]["model"].get<std::string>() + " contact scene per run (see each run's contact.validity)";
+  prov.timings = {{"total", wall}, {"ranks", ranks}, {"runs_this_invocation", pending.size()}};
+  nlohmann::json sweep = {{"spec", k.spec},          {"table", table},       {"runs", runs},
+                          {"failed_runs", failed_total}, {"checkpoint", cp.dir()}, {"provenance", prov.to_json()}};
+  if (k.extend) k.extend(sweep);
+  write_sweep_hdf5(c.out, sweep, *k.layout);
+  if (!c.csv.empty()) write_sweep_csv(c.csv, table, *k.layout);
+  if (!c.json.empty()) write_text_atomically(c.json, sweep.dump(1) + "\n");
+  std::vector<std::string> charts;
+  if (!c.plots.empty()) charts = k.plots(c.plots, sweep);
+  if (!c.quiet) {
+    k.print(sweep);
+    std::printf("  wrote %s%s%s%s%s; checkpoint %s\n", c.out.c_str(), c.csv.empty() ? "" : (", " + c.csv).c_str(),
+                c.json.empty() ? "" : (", " + c.json).c_str(), charts.empty() ? "" : ", charts in ", c.plots.c_str(),
+                cp.dir().c_str());
+    std::printf("  wall %.1f s on %d rank(s)\n", wall, ranks);
+  }
+  if (failed_total > 0) {
+    std::fprintf(stderr, "wetroad: error: %d of %zu runs failed (kept in the outputs with their reasons, left out of "
+                         "the means)\n", failed_total, runs.size());
+    return 3;
+  }
+  return 0;
+}
+
+double value_or_nan(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : NAN; }
+
+// ---- sweep-coverage ----
+
+struct CoverageCli {
+  SweepCommonCli common;
+  std::string surface, tiling = "torus";
   SynthOptions synth;
   std::vector<double> coverages = {0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
   int count = 0;
   double max_coverage = 0.8;
-  int realizations = 1, connectivity = 4, threads = 0;
-  ContactScene scene;
-  bool resume = false, quiet = false;
+  int realizations = 1, connectivity = 4;
 };
 
-std::string checkpoint_dir(const std::string& out) { return out + ".runs"; }
-
-CoverageSweepSpec make_spec(const SweepCli& c) {
+CoverageSweepSpec coverage_spec(const CoverageCli& c) {
   CoverageSweepSpec s;
   if (c.count > 0) {
     if (!(c.max_coverage > 0 && c.max_coverage < 1)) throw InputError("--max-coverage", "must lie in (0, 1)");
@@ -52,12 +186,8 @@ CoverageSweepSpec make_spec(const SweepCli& c) {
     throw InputError("--surface", "give either a surface file or synthesis options (--scene, --size, ...), not both");
   if (synthetic) s.synth = resolve_synth_options(c.synth);
   s.surface_path = c.surface;
-  s.scene = c.scene;
-  try {
-    s.scene.model = parse_model(c.model);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--model", e.what());
-  }
+  s.scene = c.common.scene;
+  s.scene.model = parse_sweep_model(c.common.model);
   if (c.tiling != "torus" && c.tiling != "3x3") throw InputError("--tiling", "must be torus or 3x3");
   s.tiling = c.tiling == "torus" ? Tiling::torus : Tiling::three_by_three;
   s.connectivity = c.connectivity;
@@ -66,118 +196,133 @@ CoverageSweepSpec make_spec(const SweepCli& c) {
   return s;
 }
 
-void print_table(const nlohmann::json& table) {
-  auto v = [](const nlohmann::json& j) { return j.is_number() ? j.get<double>() : NAN; };
+void print_coverage_table(const nlohmann::json& sweep) {
+  auto v = value_or_nan;
   std::printf("  %8s %9s %8s %10s %10s %16s %10s %10s %12s %4s %6s\n", "target", "water", "coverage", "mu_peak",
               "mu/mu_dry", "+-95%", "A/A0 norm", "A/A0 peak", "pool [mm]", "n", "failed");
-  for (const auto& r : table)
+  for (const auto& r : sweep["table"])
     std::printf("  %7.1f%% %9s %7.1f%% %10.4g %9.1f%% %15.1f%% %10.4f %10.4f %12.4f %4d %6d\n", 100 * v(r["target"]),
                 r["water"].get<std::string>().c_str(), 100 * v(r["coverage"]["mean"]), v(r["mu_peak"]["mean"]),
                 100 * v(r["mu_ratio"]["mean"]), 100 * v(r["mu_ratio"]["ci95"]), v(r["area_normal"]["mean"]),
                 v(r["area_at_peak"]["mean"]), 1e3 * v(r["mean_pool_depth"]["mean"]), r["mu_peak"]["n"].get<int>(),
                 r["failed"].get<int>());
-}
-
-int run_sweep(const SweepCli& c) {
-  const CoverageSweepSpec spec = make_spec(c);
-  const nlohmann::json spec_json = sweep_spec_json(spec);
-  int argc = 1;
-  char name[] = "wetroad";
-  char* args[] = {name, nullptr};
-  char** argv = args;
-  PetscSession petsc(&argc, &argv);
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
-  const bool talk = rank == 0 && !c.quiet;
-  const auto t0 = std::chrono::steady_clock::now();
-
-  const SweepCheckpoint cp(checkpoint_dir(c.out));
-  const std::string& dir = cp.dir();
-  cp.check(spec_json, c.resume);
-  MPI_Barrier(PETSC_COMM_WORLD);
-  if (rank == 0) cp.start(spec_json);
-  const std::vector<CoverageRunKey> keys = plan_runs(spec);
-  const auto before = cp.finished(int(keys.size()));
-  const std::size_t finished_before = before.size();
-  std::vector<int> pending;
-  for (const auto& k : keys)
-    if (!before.count(k.index)) pending.push_back(k.index);
-  if (talk) {
-    std::printf("coverage sweep: %zu runs (%zu coverages x %d realizations), model %s, %d rank(s)\n", keys.size(),
-                spec.coverages.size(), spec.realizations, model_name(spec.scene.model), ranks);
-    if (finished_before > 0)
-      std::printf("  resuming: %zu runs finished earlier are kept, %zu to do\n", finished_before, pending.size());
-    if (spec.scene.model == ContactModel::spectral)
-      std::fprintf(stderr, "wetroad: warning: the spectral model is laterally periodic: its friction is not a finite "
-                           "block's (flagged in every run's validity)\n");
-    std::fflush(stdout);
-  }
-  // Each run alone on one rank (PETSC_COMM_SELF), so the answer does not depend on the rank
-  // count; one rank per core, so threads only without MPI.
-  const int threads = ranks > 1 ? 1 : (c.threads > 0 ? c.threads : hardware_threads());
-  CoverageRunner runner(spec, PETSC_COMM_SELF, threads);
-  const int all_failures = run_pending(
-      cp, pending, PETSC_COMM_WORLD, [&](int i) { return runner.run(keys[std::size_t(i)]); },
-      [&](const SweepRunDone& d) {
-        const nlohmann::json& rec = *d.record;
-        const CoverageRunKey& k = keys[std::size_t(d.index)];
-        if (rec["status"] != "ok")
-          std::fprintf(stderr, "wetroad: warning: run %d (coverage %.3g, realization %d) failed: %s\n", k.index,
-                       k.target, k.realization, rec["message"].get<std::string>().c_str());
-        if (c.quiet) return;
-        const nlohmann::json& mu = rec.contains("contact") ? rec["contact"]["mu_peak"] : nlohmann::json(nullptr);
-        std::fprintf(stderr, "  [rank %d] run %d/%zu: realization %d, coverage %.1f%% (%s) mu %s, %.1f s; about %s left\n",
-                     rank, k.index + 1, keys.size(), k.realization, 100 * rec.value("coverage", 0.0),
-                     rec.value("water", "-").c_str(), mu.is_number() ? std::to_string(mu.get<double>()).c_str() : "-",
-                     rec["wall"]["total"].get<double>(), duration_text(d.seconds_left).c_str());
-      });
-  if (rank != 0) return all_failures > 0 ? 3 : 0;
-
-  const std::map<int, nlohmann::json> done = cp.finished(int(keys.size()));
-  std::vector<nlohmann::json> runs;
-  for (const auto& [i, r] : done) runs.push_back(r);
-  if (runs.size() != keys.size()) throw std::runtime_error("sweep: " + std::to_string(keys.size() - runs.size()) + " runs missing after the sweep");
-  const nlohmann::json table = coverage_table(runs);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  int failed_total = 0;
-  for (const auto& r : runs) failed_total += r["status"] != "ok";
-  Provenance prov;
-  prov.command = "sweep-coverage";
-  prov.inputs = {{"surface", spec.surface_path}};
-  prov.parameters = spec_json;
-  prov.model = std::string(model_name(spec.scene.model)) + " contact scene per run (see each run's contact.validity)";
-  prov.timings = {{"total", wall}, {"ranks", ranks}, {"runs_this_invocation", pending.size()}};
-  const nlohmann::json sweep = {{"spec", spec_json}, {"table", table}, {"runs", runs}, {"failed_runs", failed_total},
-                                {"checkpoint", dir}, {"provenance", prov.to_json()}};
-  write_sweep_hdf5(c.out, sweep, coverage_layout());
-  if (!c.csv.empty()) write_sweep_csv(c.csv, table, coverage_layout());
-  if (!c.json.empty()) write_text_atomically(c.json, sweep.dump(1) + "\n");
-  std::vector<std::string> charts;
-  if (!c.plots.empty()) charts = write_coverage_plots(c.plots, sweep);
-  if (!c.quiet) {
-    print_table(table);
-    std::printf("  wrote %s%s%s%s%s; checkpoint %s\n", c.out.c_str(), c.csv.empty() ? "" : (", " + c.csv).c_str(),
-                c.json.empty() ? "" : (", " + c.json).c_str(), charts.empty() ? "" : ", charts in ",
-                c.plots.c_str(), dir.c_str());
-    std::printf("  wall %.1f s on %d rank(s)\n", wall, ranks);
-  }
-  for (const auto& r : runs)
+  for (const auto& r : sweep["runs"])
     if (r["target"] == 0 && r["status"] == "ok" && !(r["contact"]["mu_peak"].get<double>() > 0))
       std::fprintf(stderr, "wetroad: warning: realization %d has no positive dry friction (mu %.3g): no wet/dry ratios "
                            "for it\n", r["realization"].get<int>(), r["contact"]["mu_peak"].get<double>());
-  if (failed_total > 0) {
-    std::fprintf(stderr, "wetroad: error: %d of %zu runs failed (kept in the outputs with their reasons, left out of "
-                         "the means)\n", failed_total, runs.size());
-    return 3;
+}
+
+int run_sweep_coverage(const CoverageCli& c) {
+  const CoverageSweepSpec spec = coverage_spec(c);
+  const std::vector<CoverageRunKey> keys = plan_runs(spec);
+  // One runner per process: it keeps the last realization's surface and drained limit.
+  auto runner = std::make_shared<std::unique_ptr<CoverageRunner>>();
+  SweepKind k;
+  k.command = "sweep-coverage";
+  k.layout = &coverage_layout();
+  k.spec = sweep_spec_json(spec);
+  k.runs = int(keys.size());
+  k.headline = "coverage sweep: " + std::to_string(keys.size()) + " runs (" + std::to_string(spec.coverages.size()) +
+               " coverages x " + std::to_string(spec.realizations) + " realizations), model " +
+               model_name(spec.scene.model);
+  k.run = [spec, keys, runner](int i, int threads) {
+    if (!*runner) *runner = std::make_unique<CoverageRunner>(spec, PETSC_COMM_SELF, threads);
+    return (*runner)->run(keys[std::size_t(i)]);
+  };
+  k.describe = [](const nlohmann::json& r) {
+    char b[160];
+    std::snprintf(b, sizeof b, "realization %d, coverage %.1f%% (%s), mu %.4g", r["realization"].get<int>(),
+                  100 * r.value("coverage", 0.0), r.value("water", "-").c_str(),
+                  r.contains("contact") ? value_or_nan(r["contact"]["mu_peak"]) : NAN);
+    return std::string(b);
+  };
+  k.table = coverage_table;
+  k.plots = write_coverage_plots;
+  k.print = print_coverage_table;
+  return drive_sweep(c.common, k);
+}
+
+// ---- sweep-roughness ----
+
+struct RoughnessCli {
+  SweepCommonCli common;
+  std::string dataset = "A";
+  std::vector<double> values;
+  int realizations = 10;
+  SynthOptions synth;  // overrides of the dataset's surface (a coarser grid for quick runs)
+};
+
+RoughnessSweepSpec roughness_spec(const RoughnessCli& c) {
+  RoughnessSweepSpec s = roughness_dataset(c.dataset);
+  if (!c.values.empty()) s.values = c.values;
+  s.realizations = c.realizations;
+  // Surface options given on the command line replace the dataset's (the swept parameter wins).
+  if (c.synth.any_given()) {
+    if (c.synth.given("--scene")) throw InputError("--scene", "the dataset is the scene; override single options");
+    const SynthParams o = resolve_synth_options(c.synth);
+    if (c.synth.given("--size") || c.synth.given("--nx")) s.base.nx = o.nx;
+    if (c.synth.given("--size") || c.synth.given("--ny")) s.base.ny = o.ny;
+    if (c.synth.given("--dx")) s.base.dx = o.dx;
+    if (c.synth.given("--h0")) s.base.h0 = o.h0;
+    if (c.synth.given("--hurst")) s.base.hurst = o.hurst;
+    if (c.synth.given("--q0-ratio")) s.base.q0_ratio = o.q0_ratio;
+    if (c.synth.given("--q1")) s.base.q1 = o.q1;
+    if (c.synth.given("--oversample")) s.base.oversample = o.oversample;
+    if (c.synth.given("--seed")) s.base.seed = o.seed;
   }
-  return 0;
+  s.scene = c.common.scene;
+  s.scene.model = parse_sweep_model(c.common.model);
+  check_roughness_spec(s);
+  return s;
+}
+
+void print_roughness_table(const nlohmann::json& sweep) {
+  auto v = value_or_nan;
+  std::printf("  %-20s %9s %9s %8s %9s %9s %8s %8s %4s %6s\n", "surfaces", "mu_peak", "+-95%", "CoV", "A/A0 peak",
+              "A/A0 norm", "kappa", "h0 [mm]", "n", "failed");
+  for (const auto& r : sweep["table"])
+    std::printf("  %-20s %9.4g %9.2g %7.1f%% %9.4f %9.4f %8.3f %8.4f %4d %6d\n", r["label"].get<std::string>().c_str(),
+                v(r["mu_peak"]["mean"]), v(r["mu_peak"]["ci95"]), 100 * v(r["mu_peak"]["cov"]),
+                v(r["area_at_peak"]["mean"]), v(r["area_normal"]["mean"]), v(r["kappa"]["mean"]),
+                1e3 * v(r["h0"]["mean"]), r["mu_peak"]["n"].get<int>(), r["failed"].get<int>());
+  if (!sweep["thesis"].empty()) {
+    std::printf("  the thesis (Tables D, C.1; 300 x 300, dGamma = dtheta/2, uz 9 mm):\n");
+    for (const auto& t : sweep["thesis"])
+      std::printf("  %-20.4g %9.4g %9s %7.1f%% %9.4f %9s %8s\n", v(t["value"]), v(t["mu"]), "", 100 * v(t["mu_cov"]),
+                  v(t["area"]), "", t.contains("kappa") ? std::to_string(v(t["kappa"])).substr(0, 5).c_str() : "");
+  }
+}
+
+int run_sweep_roughness(const RoughnessCli& c) {
+  const RoughnessSweepSpec spec = roughness_spec(c);
+  SweepKind k;
+  k.command = "sweep-roughness";
+  k.layout = &roughness_layout();
+  k.spec = roughness_spec_json(spec);
+  k.runs = roughness_run_count(spec);
+  k.headline = "roughness sweep, dataset " + spec.dataset + ": " + std::to_string(k.runs) + " runs (" +
+               std::to_string(spec.values.size()) + " values of " + parameter_name(spec.parameter) + " x " +
+               std::to_string(spec.realizations) + " realizations), " + std::to_string(spec.base.nx) + " x " +
+               std::to_string(spec.base.ny) + " surfaces, model " + model_name(spec.scene.model);
+  k.run = [spec](int i, int threads) { return run_roughness_point(spec, i, PETSC_COMM_SELF, threads); };
+  k.describe = [](const nlohmann::json& r) {
+    char b[160];
+    std::snprintf(b, sizeof b, "%s, realization %d, mu %.4g, A/A0 %.4f", r["label"].get<std::string>().c_str(),
+                  r["realization"].get<int>(), value_or_nan(r["contact"]["mu_peak"]),
+                  value_or_nan(r["contact"]["area_at_peak"]));
+    return std::string(b);
+  };
+  k.table = roughness_table;
+  k.extend = [spec](nlohmann::json& sweep) { sweep["thesis"] = thesis_rows(spec.dataset, spec.values); };
+  k.plots = write_roughness_plots;
+  k.print = print_roughness_table;
+  return drive_sweep(c.common, k);
 }
 
 }  // namespace
 
 Command add_sweep_coverage(CLI::App& root) {
-  auto c = std::make_shared<SweepCli>();
+  auto c = std::make_shared<CoverageCli>();
   CLI::App* s = root.add_subcommand("sweep-coverage", "friction against water coverage (thesis Figure 5.25)");
   s->footer(
       "For each coverage: fill the surface's pools (drained up to the surface's drained limit, standing\n"
@@ -187,7 +332,7 @@ Command add_sweep_coverage(CLI::App& root) {
       "checkpointed in OUT.runs/; --resume continues a killed sweep. Under mpirun the runs are shared\n"
       "among the ranks (each run on one rank); results do not depend on the rank count.\n"
       "Example: wetroad sweep-coverage --scene default --size 32 --dx 9.375e-4 --coverages 0 0.2 0.4 0.6 \\\n"
-      "           --uz 3e-3 --ux 1.5e-3 --out sweep.h5 --csv sweep.csv --plots charts\n"
+      "           --uz 1.5e-3 --ux 3e-3 --out sweep.h5 --csv sweep.csv --plots charts\n"
       "         mpirun -np 2 wetroad sweep-coverage --surface road.h5 --count 8 --uz 9e-3 --ux 3e-3 --out s.h5");
   s->add_option("--surface", c->surface, "surface file (HDF5 height map or text grid); or give synthesis options");
   add_synth_options(*s, c->synth);
@@ -200,31 +345,31 @@ Command add_sweep_coverage(CLI::App& root) {
   s->add_option("--tiling", c->tiling, "drainage: torus (exact periodic) or 3x3 (the thesis's tiling)")
       ->capture_default_str();
   s->add_option("--connectivity", c->connectivity, "4 or 8 neighbours for water flow")->capture_default_str();
-  s->add_option("--model", c->model, "contact model: fem (finite block) or spectral (periodic layer)")
-      ->capture_default_str();
-  s->add_option("--uz", c->scene.uz, "final normal displacement of the block's top, m")->required();
-  s->add_option("--ux", c->scene.ux, "final tangential displacement of the top, m")->required();
-  s->add_option("--steps", c->scene.normal_steps, "normal load steps")->capture_default_str();
-  s->add_option("--shear-steps", c->scene.shear_steps, "shear steps")->capture_default_str();
-  s->add_option("--refine", c->scene.refine, "contact-face spacing = surface spacing / refine")->capture_default_str();
-  s->add_option("--E", c->scene.young, "Young's modulus, Pa")->capture_default_str();
-  s->add_option("--nu", c->scene.poisson, "Poisson's ratio")->capture_default_str();
-  s->add_option("--height", c->scene.height, "block height (spectral: layer thickness), m; 0 = a cube")
-      ->capture_default_str();
-  s->add_option("--tol", c->scene.tolerance, "relative change per geometry (Signorini) iteration")
-      ->capture_default_str();
-  s->add_option("--spectral-tol", c->scene.spectral_tolerance, "spectral normal solver tolerance")
-      ->capture_default_str();
-  s->add_option("--max-iterations", c->scene.max_iterations, "per step (0: the model's default)");
-  s->add_option("--threads", c->threads, "threads of one process (ignored under mpirun: one rank per core)");
-  s->add_option("--out", c->out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")
-      ->required();
-  s->add_option("--csv", c->csv, "also write the table as CSV");
-  s->add_option("--json", c->json, "also write everything as JSON");
-  s->add_option("--plots", c->plots, "directory for the charts (SVG): mu ratio, A/A0, wet PSDs, pool depth");
-  s->add_flag("--resume", c->resume, "continue the sweep checkpointed in OUT.runs/ (same parameters)");
-  s->add_flag("-q,--quiet", c->quiet, "print nothing but warnings and errors");
-  return {s, [c] { return run_sweep(*c); }};
+  add_common_options(*s, c->common);
+  return {s, [c] { return run_sweep_coverage(*c); }};
+}
+
+Command add_sweep_roughness(CLI::App& root) {
+  auto c = std::make_shared<RoughnessCli>();
+  c->common.scene.normal_steps = 8;  // the normal curve's quartic fit needs points
+  CLI::App* s = root.add_subcommand("sweep-roughness", "friction and contact area over h0, H or q1 (thesis Tables C.1, D.1-D.3)");
+  s->footer(
+      "The thesis's datasets (Table 5.1: 300 x 300 over 3 cm, q0 = 5 qL, H 0.7, h0 0.71 mm unless swept):\n"
+      "  A: h0 = 10^-4.14 ... 10^-3.14 m;  B: H = 0.5 ... 0.9;  C: q1/q1hat = 1/8, 1/4, 1/2, 1.\n"
+      "Each value x each realization (seeds seed, seed+1, ...) is synthesized and sheared (Problem A in\n"
+      "--steps normal steps, fitted by the quartic of eq. 5.4 for kappa, then Problem B). The table gives\n"
+      "mean, 95 % CI and CoV of mu and A/A0 per value, beside the thesis's values (share/thesis/).\n"
+      "Surface options (--size, --dx, ...) override the dataset's: a coarse grid makes a quick, cheaper run\n"
+      "(its q1 is then that grid's Nyquist wavenumber). Checkpointed and MPI-distributed as sweep-coverage.\n"
+      "Example: wetroad sweep-roughness --dataset A --realizations 10 --uz 9e-3 --ux 3e-3 --refine 2 --out a.h5\n"
+      "         wetroad sweep-roughness --dataset B --size 32 --dx 9.375e-4 --realizations 3 --uz 1.5e-3 \\\n"
+      "           --ux 3e-3 --out b.h5 --plots b-charts");
+  s->add_option("--dataset", c->dataset, "A (h0), B (H) or C (q1)")->capture_default_str();
+  s->add_option("--values", c->values, "the swept parameter's values instead of the dataset's (h0 in m)");
+  s->add_option("--realizations", c->realizations, "independent surfaces per value")->capture_default_str();
+  add_synth_options(*s, c->synth);
+  add_common_options(*s, c->common);
+  return {s, [c] { return run_sweep_roughness(*c); }};
 }
 
 }  // namespace wr::app

@@ -18,6 +18,7 @@ Command add_fill(CLI::App& root);
 Command add_contact(CLI::App& root);
 Command add_bench(CLI::App& root);
 Command add_sweep_coverage(CLI::App& root);
+Command add_sweep_roughness(CLI::App& root);
 Command add_report(CLI::App& root);
 
 }  // namespace wr::app

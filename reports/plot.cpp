@@ -31,7 +31,7 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
   g << "set output " << quoted(tmp) << "\n";
   g << "set title " << quoted(spec.title) << " noenhanced\n";
   g << "set xlabel " << quoted(spec.xlabel) << " noenhanced\nset ylabel " << quoted(spec.ylabel) << " noenhanced\n";
-  g << "set grid\nset key top left noenhanced\n";
+  g << "set grid\nset key top left noenhanced opaque box\n";
   if (spec.logx) g << "set logscale x\n";
   if (spec.logy) g << "set logscale y\n";
   // Series without a finite point are left out (gnuplot refuses empty data); a chart with no

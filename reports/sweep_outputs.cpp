@@ -175,4 +175,43 @@ std::vector<std::string> write_coverage_plots(const std::string& dir, const nloh
   return files;
 }
 
+std::vector<std::string> write_roughness_plots(const std::string& dir, const nlohmann::json& sweep) {
+  std::filesystem::create_directories(dir);
+  const nlohmann::json& table = sweep["table"];
+  const std::string parameter = sweep["spec"]["parameter"].get<std::string>();
+  const bool h0 = parameter == "h0";
+  const double scale = h0 ? 1e3 : 1.0;  // h0 in mm
+  const std::string xlabel = h0 ? "h0 [mm]" : parameter == "hurst" ? "Hurst exponent H" : "q1 / q1hat";
+  const bool logx = parameter != "hurst";
+  std::vector<double> x = column(table, "value", "");
+  for (double& v : x) v *= scale;
+  std::vector<double> tx;
+  for (const auto& t : sweep["thesis"]) tx.push_back(scale * num(t["value"]));
+  auto thesis = [&](const char* key) {
+    std::vector<double> xs, ys;
+    for (const auto& t : sweep["thesis"])
+      if (t.contains(key)) {
+        xs.push_back(scale * num(t["value"]));
+        ys.push_back(num(t[key]));
+      }
+    return PlotSeries{"thesis (300 x 300, dGamma = dtheta/2)", xs, ys, "points", {}};
+  };
+  const std::string model = sweep["spec"]["scene"]["model"].get<std::string>();
+  const std::string n = std::to_string(sweep["spec"]["realizations"].get<int>());
+  std::vector<std::string> files;
+  auto chart = [&](const char* file, const std::string& title, const std::string& ylabel, const char* column_name,
+                   const char* thesis_key) {
+    PlotSpec p{title, xlabel, ylabel, logx, false, {}};
+    p.series.push_back({"wetroad " + model + ", mean and 95 % CI of " + n, x, column(table, column_name, "mean"),
+                        "", column(table, column_name, "ci95")});
+    p.series.push_back(thesis(thesis_key));
+    files.push_back(dir + "/" + file);
+    write_svg_plot(files.back(), p);
+  };
+  chart("mu.svg", "Static friction against " + parameter, "mu (peak of the shear test)", "mu_peak", "mu");
+  chart("area.svg", "Contact area against " + parameter, "A/A0 (at the friction peak)", "area_at_peak", "area");
+  chart("kappa.svg", "Low-pressure slope kappa (quartic fit, eq. 5.4) against " + parameter, "kappa", "kappa", "kappa");
+  return files;
+}
+
 }  // namespace wr

@@ -8,7 +8,8 @@
 //    _fz, _fx, _area_fraction);
 //  - CSV: the table, one row per table row;
 //  - SVG charts (gnuplot): coverage sweeps: mu_wet/mu_dry and A/A0 against coverage
-//    (Figure 5.25), the wet PSDs (Figure 5.26), the mean pool depth.
+//    (Figure 5.25), the wet PSDs (Figure 5.26), the mean pool depth; roughness sweeps: mu, A/A0
+//    and kappa against the swept parameter next to the thesis's Tables D and C.1.
 #include <string>
 #include <vector>
 
@@ -34,5 +35,8 @@ void write_sweep_csv(const std::string& path, const nlohmann::json& table, const
 // Returns the chart files written into `dir` (created if missing): mu_ratio.svg, area.svg,
 // wet_psd.svg, pool_depth.svg.
 std::vector<std::string> write_coverage_plots(const std::string& dir, const nlohmann::json& sweep);
+// Roughness sweeps: mu.svg, area.svg, kappa.svg against the swept parameter, each with the
+// thesis's values (sweep["thesis"]) beside the sweep's means and 95 % CIs.
+std::vector<std::string> write_roughness_plots(const std::string& dir, const nlohmann::json& sweep);
 
 }  // namespace wr

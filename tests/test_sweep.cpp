@@ -14,6 +14,8 @@
 #include "lib/core/errors.hpp"
 #include "lib/io/hdf5_file.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
+#include "lib/sweep/roughness_sweep.hpp"
+#include "lib/sweep/sample_statistics.hpp"
 #include "reports/sweep_outputs.hpp"
 #include "reports/html_report.hpp"
 #include "roads/height_stats.hpp"
@@ -188,6 +190,56 @@ TEST(Report, EveryTableNumberTracesToTheHdf5) {
     }
   }
   std::filesystem::remove_all(dir);
+}
+
+// The thesis's datasets as Table 5.1 and D.1-D.3 state them, and their rows found by value.
+TEST(RoughnessSweep, DatasetsAndThesisRows) {
+  const RoughnessSweepSpec a = roughness_dataset("A");
+  ASSERT_EQ(a.values.size(), 9u);
+  EXPECT_NEAR(std::log10(a.values[5]), -3.52, 1e-12);
+  EXPECT_EQ(a.base.nx, 300u);
+  EXPECT_DOUBLE_EQ(a.base.dx, 1e-4);
+  EXPECT_DOUBLE_EQ(a.base.q0_ratio, 5.0);
+  EXPECT_EQ(roughness_dataset("B").values, (std::vector<double>{0.5, 0.6, 0.7, 0.8, 0.9}));
+  EXPECT_EQ(roughness_dataset("C").parameter, RoughnessParameter::q1_fraction);
+  EXPECT_THROW(roughness_dataset("D"), InputError);
+  const nlohmann::json t = thesis_rows("A", {std::pow(10.0, -3.52), 1e-2});
+  ASSERT_EQ(t.size(), 1u);  // 1 cm is not in Table D.1
+  EXPECT_DOUBLE_EQ(t[0]["mu"].get<double>(), 0.4282);
+  EXPECT_DOUBLE_EQ(t[0]["area"].get<double>(), 0.3180);
+  EXPECT_DOUBLE_EQ(t[0]["kappa"].get<double>(), 2.16);  // Table C.1 at log h0 = -3.52
+  EXPECT_DOUBLE_EQ(thesis_rows("B", {0.7})[0]["mu"].get<double>(), 0.3692);
+}
+
+// Per value: the realizations' statistics, with CoV = std / mean (the thesis's s*); a real run
+// records the surface it made and fits the normal curve (>= 4 normal steps) for kappa.
+TEST(RoughnessSweep, RunsAndTable) {
+  RoughnessSweepSpec s = roughness_dataset("B");
+  s.values = {0.7};
+  s.realizations = 2;
+  s.base.nx = s.base.ny = 32;
+  s.base.dx = 1e-3;
+  s.base.h0 = 2e-4;
+  s.scene.model = ContactModel::spectral;
+  s.scene.uz = 1e-3;
+  s.scene.ux = 1e-3;
+  s.scene.normal_steps = 5;
+  s.scene.shear_steps = 1;
+  check_roughness_spec(s);
+  std::vector<nlohmann::json> runs;
+  for (int i = 0; i < roughness_run_count(s); ++i) runs.push_back(run_roughness_point(s, i, MPI_COMM_NULL, 1));
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_NE(runs[0]["seed"], runs[1]["seed"]);
+  EXPECT_NEAR(runs[0]["h0"].get<double>(), 2e-4, 1e-9);  // synthesis normalises h0 exactly
+  ASSERT_TRUE(runs[0]["quartic"].is_object()) << runs[0].dump();
+  EXPECT_EQ(runs[0]["normal_curve"]["area"].size(), 5u);
+  const nlohmann::json t = roughness_table(runs);
+  ASSERT_EQ(t.size(), 1u);
+  const double a0 = runs[0]["contact"]["area_at_peak"].get<double>(), a1 = runs[1]["contact"]["area_at_peak"].get<double>();
+  const double mean = (a0 + a1) / 2, sd = std::abs(a0 - a1) / std::sqrt(2.0);
+  EXPECT_NEAR(t[0]["area_at_peak"]["mean"].get<double>(), mean, 1e-15);
+  EXPECT_NEAR(t[0]["area_at_peak"]["cov"].get<double>(), sd / mean, 1e-12);
+  EXPECT_EQ(t[0]["label"], "H = 0.7");
 }
 
 TEST(Report, PeakOfAQuadraticAndItsFallback) {

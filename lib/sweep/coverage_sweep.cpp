@@ -7,6 +7,7 @@
 #include <map>
 
 #include "lib/core/errors.hpp"
+#include "lib/sweep/sample_statistics.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/mpd.hpp"
 #include "roads/spectrum.hpp"
@@ -183,32 +184,7 @@ nlohmann::json CoverageRunner::run(const CoverageRunKey& key) {
   return rec;
 }
 
-double student_t95(int dof) {
-  static const double t[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
-                             2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
-                             2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
-  if (dof < 1) return std::numeric_limits<double>::quiet_NaN();
-  if (dof <= 30) return t[dof - 1];
-  return 1.960 + 2.4 / dof;  // within 0.2 % of the exact quantile beyond 30
-}
-
 namespace {
-
-struct Stat {
-  std::vector<double> v;
-  nlohmann::json json() const {
-    const std::size_t n = v.size();
-    if (n == 0) return {{"mean", nullptr}, {"std", nullptr}, {"ci95", nullptr}, {"n", 0}};
-    double m = 0;
-    for (double x : v) m += x;
-    m /= double(n);
-    double ss = 0;
-    for (double x : v) ss += (x - m) * (x - m);
-    const double sd = n > 1 ? std::sqrt(ss / double(n - 1)) : 0.0;
-    const double ci = n > 1 ? student_t95(int(n) - 1) * sd / std::sqrt(double(n)) : 0.0;
-    return {{"mean", m}, {"std", sd}, {"ci95", ci}, {"n", n}};
-  }
-};
 
 double get_number(const nlohmann::json& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
@@ -226,7 +202,7 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
   for (const auto& r : runs) by_target[r["target"].get<double>()].push_back(&r);
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& [target, list] : by_target) {
-    Stat mu, ratio, area_peak, area_normal, coverage, pool, sq;
+    std::vector<double> mu, ratio, area_peak, area_normal, coverage, pool, sq;
     std::vector<int> indices;
     std::string water;
     int failed = 0;
@@ -238,15 +214,15 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
       }
       water = (*r)["water"].get<std::string>();
       const double m = (*r)["contact"]["mu_peak"].get<double>();
-      mu.v.push_back(m);
+      mu.push_back(m);
       // A ratio to a dry friction that is not positive means nothing (a scene without friction).
       const auto d = mu_dry.find((*r)["realization"].get<int>());
-      if (d != mu_dry.end() && d->second > 0) ratio.v.push_back(m / d->second);
-      area_peak.v.push_back(get_number((*r)["contact"], "area_at_peak"));
-      area_normal.v.push_back(get_number((*r)["contact"], "area_normal"));
-      coverage.v.push_back(get_number(*r, "coverage"));
-      pool.v.push_back(get_number(*r, "mean_pool_depth"));
-      sq.v.push_back(get_number(*r, "wet_sq"));
+      if (d != mu_dry.end() && d->second > 0) ratio.push_back(m / d->second);
+      area_peak.push_back(get_number((*r)["contact"], "area_at_peak"));
+      area_normal.push_back(get_number((*r)["contact"], "area_normal"));
+      coverage.push_back(get_number(*r, "coverage"));
+      pool.push_back(get_number(*r, "mean_pool_depth"));
+      sq.push_back(get_number(*r, "wet_sq"));
     }
     std::sort(indices.begin(), indices.end());
     rows.push_back({{"target", target},
@@ -254,13 +230,13 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
                     {"label", water},
                     {"runs", indices},
                     {"failed", failed},
-                    {"mu_peak", mu.json()},
-                    {"mu_ratio", ratio.json()},
-                    {"area_at_peak", area_peak.json()},
-                    {"area_normal", area_normal.json()},
-                    {"coverage", coverage.json()},
-                    {"mean_pool_depth", pool.json()},
-                    {"wet_sq", sq.json()}});
+                    {"mu_peak", sample_statistics(mu)},
+                    {"mu_ratio", sample_statistics(ratio)},
+                    {"area_at_peak", sample_statistics(area_peak)},
+                    {"area_normal", sample_statistics(area_normal)},
+                    {"coverage", sample_statistics(coverage)},
+                    {"mean_pool_depth", sample_statistics(pool)},
+                    {"wet_sq", sample_statistics(sq)}});
   }
   return rows;
 }

@@ -80,14 +80,10 @@ class CoverageRunner {
   std::string ground_mpd_note_;
 };
 
-// One row per target coverage: the realizations' mean, standard deviation and 95 % confidence
-// half-width (Student t) of mu_peak, mu_ratio (mu / the same realization's dry mu), area at
-// the peak and after the normal load, achieved coverage, mean pool depth and wet rms height;
-// n counts the runs that finished. mu_ratio leaves out realizations whose dry mu is not positive
+// One row per target coverage: sample_statistics (lib/sweep/sample_statistics.hpp) of mu_peak,
+// mu_ratio (mu / the same realization's dry mu), area at the peak and after the normal load,
+// achieved coverage, mean pool depth and wet rms height; n counts the runs that finished. mu_ratio leaves out realizations whose dry mu is not positive
 // (its n says how many remain). Runs are records as above, in any order.
 nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs);
-
-// Two-sided 95 % Student t quantile for `dof` degrees of freedom (>= 1).
-double student_t95(int dof);
 
 }  // namespace wr

@@ -1,0 +1,243 @@
+#include "lib/sweep/roughness_sweep.hpp"
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <map>
+
+#include "lib/analytic/area_load_fit.hpp"
+#include "lib/core/errors.hpp"
+#include "lib/sweep/sample_statistics.hpp"
+#include "roads/height_stats.hpp"
+
+namespace wr {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// The thesis's surfaces (Table 5.1): 300 x 300 over 3 cm, q0 = 5 qL, H = 0.7, h0 = 0.71 mm.
+SynthParams thesis_surface() {
+  SynthParams p;
+  p.nx = p.ny = 300;
+  p.dx = 1e-4;
+  p.hurst = 0.7;
+  p.q0_ratio = 5;
+  p.h0 = 7.1e-4;
+  p.seed = 1;
+  return p;
+}
+
+std::string label_of(RoughnessParameter p, double v) {
+  char b[64];
+  if (p == RoughnessParameter::h0) std::snprintf(b, sizeof b, "h0 = %.3g mm", 1e3 * v);
+  else if (p == RoughnessParameter::hurst) std::snprintf(b, sizeof b, "H = %.2g", v);
+  else std::snprintf(b, sizeof b, "q1/q1hat = %.4g", v);
+  return b;
+}
+
+}  // namespace
+
+const char* parameter_name(RoughnessParameter p) {
+  switch (p) {
+    case RoughnessParameter::h0: return "h0";
+    case RoughnessParameter::hurst: return "hurst";
+    case RoughnessParameter::q1_fraction: return "q1_fraction";
+  }
+  return "?";
+}
+
+RoughnessSweepSpec roughness_dataset(const std::string& name) {
+  RoughnessSweepSpec s;
+  s.dataset = name;
+  s.base = thesis_surface();
+  if (name == "A") {
+    s.parameter = RoughnessParameter::h0;
+    for (double e : {-4.14, -4.02, -3.89, -3.77, -3.64, -3.52, -3.39, -3.27, -3.14}) s.values.push_back(std::pow(10.0, e));
+  } else if (name == "B") {
+    s.parameter = RoughnessParameter::hurst;
+    s.values = {0.5, 0.6, 0.7, 0.8, 0.9};
+  } else if (name == "C") {
+    s.parameter = RoughnessParameter::q1_fraction;
+    s.values = {0.125, 0.25, 0.5, 1.0};
+  } else {
+    throw InputError("--dataset", "must be A, B or C (the thesis's datasets, Table 5.1)");
+  }
+  return s;
+}
+
+void check_roughness_spec(const RoughnessSweepSpec& s) {
+  if (s.values.empty()) throw InputError("--values", "give at least one value");
+  for (double v : s.values) {
+    const bool ok = s.parameter == RoughnessParameter::h0       ? v > 0
+                    : s.parameter == RoughnessParameter::hurst ? (v > 0 && v < 1)
+                                                               : (v > 0 && v <= 1);
+    if (!ok) throw InputError("--values", std::string("a value out of range for ") + parameter_name(s.parameter));
+  }
+  if (s.realizations < 1) throw InputError("--realizations", "must be >= 1");
+  check_contact_scene(s.scene);
+  SynthParams p = s.base;
+  validate(p);
+}
+
+int roughness_run_count(const RoughnessSweepSpec& s) { return int(s.values.size()) * s.realizations; }
+
+nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s) {
+  const SynthParams& p = s.base;
+  return {{"dataset", s.dataset},
+          {"parameter", parameter_name(s.parameter)},
+          {"values", s.values},
+          {"realizations", s.realizations},
+          {"surface",
+           {{"nx", p.nx}, {"ny", p.ny}, {"dx", p.dx}, {"h0", p.h0}, {"hurst", p.hurst}, {"q0_ratio", p.q0_ratio},
+            {"q1", p.q1 ? nlohmann::json(*p.q1) : nlohmann::json(nullptr)}, {"q1_fraction", p.q1_fraction},
+            {"oversample", p.oversample}, {"seed", p.seed}}},
+          {"scene", contact_scene_json(s.scene)}};
+}
+
+nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int vi = index / s.realizations, r = index % s.realizations;
+  const double value = s.values[std::size_t(vi)];
+  SynthParams p = s.base;
+  p.seed = s.base.seed + std::uint64_t(r);
+  p.threads = threads;
+  if (s.parameter == RoughnessParameter::h0) p.h0 = value;
+  if (s.parameter == RoughnessParameter::hurst) p.hurst = value;
+  if (s.parameter == RoughnessParameter::q1_fraction) p.q1_fraction = value;
+  const HeightMap m = synthesize(p).map;
+  nlohmann::json rec = {{"index", index},     {"value_index", vi}, {"value", value},
+                        {"label", label_of(s.parameter, value)}, {"realization", r}, {"seed", p.seed},
+                        {"h0", height_stats(m, threads).sq},     {"rms_slope", rms_slope_finite_difference(m, threads)}};
+  const double wall_surface = seconds_since(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  ContactScene scene = s.scene;
+  scene.threads = threads;
+  SceneResult c;
+  try {
+    c = run_contact_scene(m, scene, comm);
+  } catch (const std::exception& e) {
+    c.failed = true;
+    c.model = model_name(scene.model);
+    c.message = e.what();
+    c.mu_peak = kNaN;
+  }
+  nlohmann::json steps = nlohmann::json::array();
+  std::vector<double> sig, area;
+  for (const auto& st : c.steps) {
+    steps.push_back({{"uz", st.uz}, {"ux", st.ux}, {"fz", st.fz}, {"fx", st.fx}, {"mu", st.mu},
+                     {"area_fraction", st.area_fraction}, {"sigma_star", st.sigma_star}, {"converged", st.converged}});
+    if (st.ux == 0 && st.converged && st.sigma_star > 0) {
+      sig.push_back(st.sigma_star);
+      area.push_back(st.area_fraction);
+    }
+  }
+  rec["contact"] = {{"model", c.model},
+                    {"mu_peak", number_or_null(c.mu_peak)},
+                    {"ux_peak", c.ux_peak},
+                    {"area_at_peak", c.area_at_peak},
+                    {"area_normal", c.area_normal},
+                    {"fz_normal", c.fz_normal},
+                    {"failed", c.failed},
+                    {"message", c.message},
+                    {"unknowns", c.unknowns},
+                    {"steps", steps},
+                    {"validity", c.validity}};
+  rec["normal_curve"] = {{"sigma_star", sig}, {"area", area}};
+  rec["quartic"] = nullptr;
+  if (sig.size() >= 4) {
+    try {
+      const QuarticAreaFit q = fit_quartic_area(sig, area);
+      rec["quartic"] = {{"Pi", q.pi}, {"Omega", q.omega}, {"Lambda", q.lambda}, {"kappa", q.kappa}, {"r2", q.r2}};
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  const bool ok = !c.failed && std::isfinite(c.mu_peak);
+  rec["status"] = ok ? "ok" : "failed";
+  rec["message"] = ok ? "" : "contact: " + c.message;
+  rec["wall"] = {{"surface", wall_surface}, {"contact", seconds_since(t1)}, {"total", seconds_since(t0)}};
+  return rec;
+}
+
+nlohmann::json roughness_table(const std::vector<nlohmann::json>& runs) {
+  std::map<int, std::vector<const nlohmann::json*>> by_value;
+  for (const auto& r : runs) by_value[r["value_index"].get<int>()].push_back(&r);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& [vi, list] : by_value) {
+    std::vector<double> mu, ap, an, kappa, h0, slope;
+    std::vector<int> indices;
+    int failed = 0;
+    for (const nlohmann::json* r : list) {
+      indices.push_back((*r)["index"].get<int>());
+      if ((*r)["status"] != "ok") {
+        ++failed;
+        continue;
+      }
+      const auto& c = (*r)["contact"];
+      mu.push_back(c["mu_peak"].get<double>());
+      ap.push_back(c["area_at_peak"].get<double>());
+      an.push_back(c["area_normal"].get<double>());
+      if ((*r)["quartic"].is_object()) kappa.push_back((*r)["quartic"]["kappa"].get<double>());
+      h0.push_back((*r)["h0"].get<double>());
+      slope.push_back((*r)["rms_slope"].get<double>());
+    }
+    std::sort(indices.begin(), indices.end());
+    const nlohmann::json& first = *list.front();
+    rows.push_back({{"value", first["value"]},
+                    {"label", first["label"]},
+                    {"runs", indices},
+                    {"failed", failed},
+                    {"mu_peak", sample_statistics(mu)},
+                    {"area_at_peak", sample_statistics(ap)},
+                    {"area_normal", sample_statistics(an)},
+                    {"kappa", sample_statistics(kappa)},
+                    {"h0", sample_statistics(h0)},
+                    {"rms_slope", sample_statistics(slope)}});
+  }
+  return rows;
+}
+
+nlohmann::json thesis_rows(const std::string& dataset, const std::vector<double>& values) {
+  const std::string path = std::string(WETROAD_SHARE_DIR) + "/thesis/roughness-tables.json";
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open the thesis's tables");
+  nlohmann::json t;
+  try {
+    t = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path, std::string("not valid JSON: ") + e.what());
+  }
+  nlohmann::json rows = nlohmann::json::array();
+  if (!t["datasets"].contains(dataset)) return rows;
+  const auto& d = t["datasets"][dataset];
+  const auto& td = d["table_d"];
+  const std::string key = dataset == "A" ? "log10_h0" : d["parameter"].get<std::string>();
+  for (double v : values) {
+    const double x = dataset == "A" ? std::log10(v) : v;
+    for (std::size_t k = 0; k < td[key].size(); ++k) {
+      const double tv = td[key][k].get<double>();
+      if (std::abs(tv - x) > 0.01 * std::abs(tv)) continue;
+      nlohmann::json row = {{"value", v},           {"mu", td["mu"][k]},     {"mu_cov", td["mu_cov"][k]},
+                            {"area", td["area"][k]}, {"area_cov", td["area_cov"][k]}};
+      if (d.contains("table_c1")) {  // kappa at the nearest log h0 of Table C.1 (its own grid)
+        const auto& c1 = d["table_c1"];
+        std::size_t best = 0;
+        for (std::size_t j = 1; j < c1["log10_h0"].size(); ++j)
+          if (std::abs(c1["log10_h0"][j].get<double>() - x) < std::abs(c1["log10_h0"][best].get<double>() - x)) best = j;
+        if (std::abs(c1["log10_h0"][best].get<double>() - x) < 0.07) row["kappa"] = c1["kappa"][best];
+      }
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+}  // namespace wr
