@@ -1,5 +1,6 @@
 #!/bin/sh
-# Installs the Debian packages wetroad builds against, only those that are missing.
+# Installs the Debian packages wetroad builds against (and librsvg2-bin, libxml2-utils for the
+# test that renders the report), only those that are missing.
 # Non-interactive; uses sudo when not root. Safe to run repeatedly.
 set -eu
 PACKAGES="cmake g++ make pkg-config libfftw3-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin \
