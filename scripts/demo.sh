@@ -4,7 +4,8 @@
 # the drained limit); then a shear test of an elastic block on a small gentle patch (4 mm, 40 x 40:
 # the FEM on the full 300 x 300 default surface is a long job, see README "contact"); finally a
 # small coverage sweep on the default surface sampled coarsely (32 x 32 over the same 30 mm tile,
-# so that each FEM run takes seconds) and its HTML report.
+# so that each FEM run takes seconds; contact forces along the obstacle's facet normals, see
+# README "sweeps") and its HTML report.
 # Outputs land in build/demo/.
 set -eu
 BIN=${BIN:-build/bin/wetroad}
@@ -23,8 +24,8 @@ OMP_NUM_THREADS=1 "$BIN" contact --surface "$OUT/patch.h5" --problem shear --uz 
   --tol 1e-3 --json "$OUT/contact.json" --out "$OUT/contact.h5" --vtu "$OUT/contact.vtu"
 echo
 rm -rf "$OUT/sweep.h5" "$OUT/sweep.h5.runs"
-OMP_NUM_THREADS=1 "$BIN" sweep-coverage --scene default --size 32 --dx 9.375e-4 --coverages 0 0.2 0.4 0.6 0.7 \
-  --uz 1.5e-3 --ux 3e-3 --steps 2 --shear-steps 3 --tol 1e-3 --out "$OUT/sweep.h5" --csv "$OUT/sweep.csv" \
+OMP_NUM_THREADS=1 "$BIN" sweep-coverage --scene default --size 32 --dx 9.375e-4 --coverages 0 0.2 0.4 0.5 0.6 0.7 \
+  --uz 1.5e-3 --ux 3e-3 --steps 2 --shear-steps 3 --tol 1e-3 --facet-normals --out "$OUT/sweep.h5" --csv "$OUT/sweep.csv" \
   --plots "$OUT/sweep-charts"
 echo
 "$BIN" report --sweep "$OUT/sweep.h5" -o "$OUT/report.html"

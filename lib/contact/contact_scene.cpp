@@ -57,6 +57,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm c
   o.rms_slope = rms_slope_finite_difference(obstacle, 1);
   o.max_penetration = 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
   o.comm = comm;
+  o.facet_normals = s.facet_normals;
   const ContactTestResult t = run_contact_test(obstacle, o);
   SceneResult r;
   r.model = "fem";
@@ -122,7 +123,8 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"height", s.height},
           {"tolerance", s.tolerance},
           {"spectral_tolerance", s.spectral_tolerance},
-          {"max_iterations", s.max_iterations}};
+          {"max_iterations", s.max_iterations},
+          {"facet_normals", s.facet_normals}};
 }
 
 }  // namespace wr

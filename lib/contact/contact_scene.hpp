@@ -31,6 +31,10 @@ struct ContactScene {
   double spectral_tolerance = 1e-8;  // Polonsky-Keer error
   int max_iterations = 0;     // per step (0: the model's default)
   int threads = 1;            // spectral FFT threads
+  // FEM: constrain each contact node along the normal of the obstacle facet its ray hits (the
+  // direction of a frictionless contact force on the rigid surface) instead of the smooth blend
+  // of the face's vertex normals; tangential forces then come from the obstacle's flanks.
+  bool facet_normals = false;
 };
 
 struct SceneResult {
