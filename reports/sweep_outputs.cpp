@@ -1,5 +1,6 @@
 #include "reports/sweep_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -131,6 +132,26 @@ std::vector<std::string> write_coverage_plots(const std::string& dir, const nloh
               "mu_wet / mu_dry [%]", false, false, {}};
   mu.series.push_back({"mu_wet / mu_dry" + ci, cov, percent(column(table, "mu_ratio", "mean")), "",
                        percent(column(table, "mu_ratio", "ci95"))});
+  // The drained limit (mean over the realizations): beyond it the water stands.
+  double limit = 0;
+  int nl = 0;
+  for (const auto& r : sweep["runs"])
+    if (r.contains("drained_limit")) {
+      limit += num(r["drained_limit"]);
+      ++nl;
+    }
+  if (nl > 0) {
+    limit = 100 * limit / nl;
+    double lo = 100, hi = 100;
+    for (double v : mu.series[0].y)
+      if (std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    char label[64];
+    std::snprintf(label, sizeof label, "drained limit %.1f %%", limit);
+    mu.series.push_back({label, {limit, limit}, {lo, hi}, "lines", {}});
+  }
   files.push_back(dir + "/mu_ratio.svg");
   write_svg_plot(files.back(), mu);
 
