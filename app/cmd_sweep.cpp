@@ -20,6 +20,7 @@
 #include "lib/sweep/roughness_sweep.hpp"
 #include "lib/sweep/sweep_engine.hpp"
 #include "reports/sweep_outputs.hpp"
+#include "roads/surface_import.hpp"
 
 namespace wr::app {
 namespace {
@@ -188,6 +189,8 @@ CoverageSweepSpec coverage_spec(const CoverageCli& c) {
     throw InputError("--surface", "give either a surface file or synthesis options (--scene, --size, ...), not both");
   if (synthetic) s.synth = resolve_synth_options(c.synth);
   s.surface_path = c.surface;
+  if (!synthetic && !load_surface(c.surface).map.periodic)  // bad files fail here, not in every run
+    throw InputError(c.surface, "not a periodic surface; the contact scene repeats the surface");
   s.scene = c.common.scene;
   s.scene.model = parse_sweep_model(c.common.model);
   if (c.tiling != "torus" && c.tiling != "3x3") throw InputError("--tiling", "must be torus or 3x3");
@@ -309,9 +312,10 @@ int run_sweep_roughness(const RoughnessCli& c) {
   k.run = [spec](int i, int threads) { return run_roughness_point(spec, i, PETSC_COMM_SELF, threads); };
   k.describe = [](const nlohmann::json& r) {
     char b[160];
+    const bool c = r.contains("contact");
     std::snprintf(b, sizeof b, "%s, realization %d, mu %.4g, A/A0 %.4f", r["label"].get<std::string>().c_str(),
-                  r["realization"].get<int>(), value_or_nan(r["contact"]["mu_peak"]),
-                  value_or_nan(r["contact"]["area_at_peak"]));
+                  r["realization"].get<int>(), c ? value_or_nan(r["contact"]["mu_peak"]) : NAN,
+                  c ? value_or_nan(r["contact"]["area_at_peak"]) : NAN);
     return std::string(b);
   };
   k.table = roughness_table;

@@ -74,6 +74,23 @@ TEST(CoverageSweep, TableStatisticsMatchHandComputation) {
   EXPECT_NEAR(student_t95(200), 1.972, 2e-3);
 }
 
+// A run that cannot be done is a failed record with its key and reason, never an exception that
+// would stop the other runs (or leave MPI ranks waiting).
+TEST(CoverageSweep, AFailingRunIsARecordNotAnException) {
+  CoverageSweepSpec s;
+  s.surface_path = ::testing::TempDir() + "no-such-surface.h5";
+  s.coverages = {0};
+  s.scene.uz = s.scene.ux = 1e-3;
+  CoverageRunner runner(s, MPI_COMM_NULL, 1);
+  nlohmann::json r;
+  ASSERT_NO_THROW(r = runner.run({0, 0, 0.0}));
+  EXPECT_EQ(r["status"], "failed");
+  EXPECT_NE(r["message"].get<std::string>().find("no-such-surface"), std::string::npos) << r["message"];
+  const nlohmann::json t = coverage_table({r});
+  EXPECT_EQ(t[0]["failed"].get<int>(), 1);
+  EXPECT_EQ(t[0]["mu_peak"]["n"].get<int>(), 0);
+}
+
 TEST(CoverageSweep, BadSpecsAreRefused) {
   CoverageSweepSpec s;
   s.surface_path = "x.h5";

@@ -110,6 +110,16 @@ void CoverageRunner::load_realization(int r) {
 
 nlohmann::json CoverageRunner::run(const CoverageRunKey& key) {
   const auto t0 = std::chrono::steady_clock::now();
+  try {
+    return run_unguarded(key);
+  } catch (const std::exception& e) {  // one failed run must not stop the others (or hang MPI)
+    return {{"index", key.index}, {"realization", key.realization}, {"target", key.target}, {"status", "failed"},
+            {"message", e.what()}, {"wall", {{"total", seconds_since(t0)}}}};
+  }
+}
+
+nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key) {
+  const auto t0 = std::chrono::steady_clock::now();
   load_realization(key.realization);
   nlohmann::json rec = {{"index", key.index}, {"realization", key.realization}, {"seed", seed_},
                         {"target", key.target}, {"drained_limit", drained_limit_},

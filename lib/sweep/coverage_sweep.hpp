@@ -65,9 +65,11 @@ nlohmann::json sweep_spec_json(const CoverageSweepSpec& s);
 class CoverageRunner {
  public:
   CoverageRunner(const CoverageSweepSpec& spec, MPI_Comm contact_comm, int threads);
+  // Never throws: an exception becomes a failed record with the key and the reason.
   nlohmann::json run(const CoverageRunKey& key);
 
  private:
+  nlohmann::json run_unguarded(const CoverageRunKey& key);
   void load_realization(int r);
   CoverageSweepSpec spec_;
   MPI_Comm comm_;

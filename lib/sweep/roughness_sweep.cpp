@@ -103,7 +103,9 @@ nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s) {
           {"scene", contact_scene_json(s.scene)}};
 }
 
-nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads) {
+namespace {
+
+nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   const int vi = index / s.realizations, r = index % s.realizations;
   const double value = s.values[std::size_t(vi)];
@@ -165,6 +167,26 @@ nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_C
   rec["message"] = ok ? "" : "contact: " + c.message;
   rec["wall"] = {{"surface", wall_surface}, {"contact", seconds_since(t1)}, {"total", seconds_since(t0)}};
   return rec;
+}
+
+}  // namespace
+
+nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    return run_point_unguarded(s, index, comm, threads);
+  } catch (const std::exception& e) {  // one failed run must not stop the others (or hang MPI)
+    const int vi = index / s.realizations;
+    const double value = s.values[std::size_t(vi)];
+    return {{"index", index},
+            {"value_index", vi},
+            {"value", value},
+            {"label", label_of(s.parameter, value)},
+            {"realization", index % s.realizations},
+            {"status", "failed"},
+            {"message", e.what()},
+            {"wall", {{"total", seconds_since(t0)}}}};
+  }
 }
 
 nlohmann::json roughness_table(const std::vector<nlohmann::json>& runs) {

@@ -48,6 +48,7 @@ nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s);
 int roughness_run_count(const RoughnessSweepSpec& s);
 
 // One run: synthesize the realization at its value, run the contact scene, fit the normal curve.
+// Never throws: an exception becomes a failed record with the key fields and the reason.
 nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads);
 
 // One row per value: mean, std, ci95 and cov (std / mean, the thesis's s*) of mu_peak,
