@@ -146,7 +146,9 @@ std::string scene_html(const std::string& file, const nlohmann::json& sweep) {
   row("scene", "uz " + fmt(num(sc["uz"])) + " m in " + fmt(num(sc["normal_steps"]), "%.0f") + " steps, then ux " +
                    fmt(num(sc["ux"])) + " m in " + fmt(num(sc["shear_steps"]), "%.0f") + " steps; E " + fmt(num(sc["E"])) +
                    " Pa, &nu; " + fmt(num(sc["nu"])) + ", refine " + fmt(num(sc["refine"]), "%.0f") + ", tolerance " +
-                   fmt(num(sc["tolerance"])));
+                   fmt(num(sc["tolerance"])) +
+                   (sc.value("facet_normals", false) ? "; contact forces along the obstacle facets' normals"
+                                                     : "; contact forces along the blended obstacle normals"));
   row("water", "drainage " + escape(sp["tiling"].get<std::string>()) + ", " + fmt(num(sp["connectivity"]), "%.0f") +
                    "-connected; drained fills up to the drained limit, standing water beyond");
   const auto& pv = sweep["provenance"];
