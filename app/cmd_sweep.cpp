@@ -163,6 +163,17 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
 
 double value_or_nan(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : NAN; }
 
+// A table cell: `v` printed with `format` (one conversion), or "-" when there is no value
+// (every run of the row failed); right-aligned to `width`.
+std::string cell(double v, const char* format, int width) {
+  char b[64];
+  if (std::isfinite(v)) std::snprintf(b, sizeof b, format, v);
+  else std::snprintf(b, sizeof b, "-");
+  char out[80];
+  std::snprintf(out, sizeof out, "%*s", width, b);
+  return out;
+}
+
 // ---- sweep-coverage ----
 
 struct CoverageCli {
@@ -206,10 +217,12 @@ void print_coverage_table(const nlohmann::json& sweep) {
   std::printf("  %8s %9s %8s %10s %10s %16s %10s %10s %12s %4s %6s\n", "target", "water", "coverage", "mu_peak",
               "mu/mu_dry", "+-95%", "A/A0 norm", "A/A0 peak", "pool [mm]", "n", "failed");
   for (const auto& r : sweep["table"])
-    std::printf("  %7.1f%% %9s %7.1f%% %10.4g %9.1f%% %15.1f%% %10.4f %10.4f %12.4f %4d %6d\n", 100 * v(r["target"]),
-                r["water"].get<std::string>().c_str(), 100 * v(r["coverage"]["mean"]), v(r["mu_peak"]["mean"]),
-                100 * v(r["mu_ratio"]["mean"]), 100 * v(r["mu_ratio"]["ci95"]), v(r["area_normal"]["mean"]),
-                v(r["area_at_peak"]["mean"]), 1e3 * v(r["mean_pool_depth"]["mean"]), r["mu_peak"]["n"].get<int>(),
+    std::printf("  %s %9s %s %s %s %s %s %s %s %4d %6d\n", cell(100 * v(r["target"]), "%.1f%%", 8).c_str(),
+                r["water"].get<std::string>().c_str(), cell(100 * v(r["coverage"]["mean"]), "%.1f%%", 8).c_str(),
+                cell(v(r["mu_peak"]["mean"]), "%.4g", 10).c_str(), cell(100 * v(r["mu_ratio"]["mean"]), "%.1f%%", 10).c_str(),
+                cell(100 * v(r["mu_ratio"]["ci95"]), "%.1f%%", 16).c_str(), cell(v(r["area_normal"]["mean"]), "%.4f", 10).c_str(),
+                cell(v(r["area_at_peak"]["mean"]), "%.4f", 10).c_str(),
+                cell(1e3 * v(r["mean_pool_depth"]["mean"]), "%.4f", 12).c_str(), r["mu_peak"]["n"].get<int>(),
                 r["failed"].get<int>());
   for (const auto& r : sweep["runs"])
     if (r["target"] == 0 && r["status"] == "ok" && !(r["contact"]["mu_peak"].get<double>() > 0))
@@ -286,15 +299,17 @@ void print_roughness_table(const nlohmann::json& sweep) {
   std::printf("  %-20s %9s %9s %8s %9s %9s %8s %8s %4s %6s\n", "surfaces", "mu_peak", "+-95%", "CoV", "A/A0 peak",
               "A/A0 norm", "kappa", "h0 [mm]", "n", "failed");
   for (const auto& r : sweep["table"])
-    std::printf("  %-20s %9.4g %9.2g %7.1f%% %9.4f %9.4f %8.3f %8.4f %4d %6d\n", r["label"].get<std::string>().c_str(),
-                v(r["mu_peak"]["mean"]), v(r["mu_peak"]["ci95"]), 100 * v(r["mu_peak"]["cov"]),
-                v(r["area_at_peak"]["mean"]), v(r["area_normal"]["mean"]), v(r["kappa"]["mean"]),
-                1e3 * v(r["h0"]["mean"]), r["mu_peak"]["n"].get<int>(), r["failed"].get<int>());
+    std::printf("  %-20s %s %s %s %s %s %s %s %4d %6d\n", r["label"].get<std::string>().c_str(),
+                cell(v(r["mu_peak"]["mean"]), "%.4g", 9).c_str(), cell(v(r["mu_peak"]["ci95"]), "%.2g", 9).c_str(),
+                cell(100 * v(r["mu_peak"]["cov"]), "%.1f%%", 8).c_str(), cell(v(r["area_at_peak"]["mean"]), "%.4f", 9).c_str(),
+                cell(v(r["area_normal"]["mean"]), "%.4f", 9).c_str(), cell(v(r["kappa"]["mean"]), "%.3f", 8).c_str(),
+                cell(1e3 * v(r["h0"]["mean"]), "%.4f", 8).c_str(), r["mu_peak"]["n"].get<int>(), r["failed"].get<int>());
   if (!sweep["thesis"].empty()) {
-    std::printf("  the thesis (Tables D, C.1; 300 x 300, dGamma = dtheta/2, uz 9 mm):\n");
+    std::printf("  the thesis (Tables D.1-D.3, C.1; 300 x 300, dGamma = dtheta/2, uz 9 mm; A/A0 is its A'):\n");
     for (const auto& t : sweep["thesis"])
-      std::printf("  %-20.4g %9.4g %9s %7.1f%% %9.4f %9s %8s\n", v(t["value"]), v(t["mu"]), "", 100 * v(t["mu_cov"]),
-                  v(t["area"]), "", t.contains("kappa") ? std::to_string(v(t["kappa"])).substr(0, 5).c_str() : "");
+      std::printf("  %-20s %s %9s %s %s %9s %s\n", t["label"].get<std::string>().c_str(), cell(v(t["mu"]), "%.4g", 9).c_str(), "",
+                  cell(100 * v(t["mu_cov"]), "%.1f%%", 8).c_str(), cell(v(t["area"]), "%.4f", 9).c_str(), "",
+                  cell(t.contains("kappa") ? v(t["kappa"]) : NAN, "%.3f", 8).c_str());
   }
 }
 

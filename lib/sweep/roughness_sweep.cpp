@@ -247,8 +247,11 @@ nlohmann::json thesis_rows(const std::string& dataset, const std::vector<double>
     for (std::size_t k = 0; k < td[key].size(); ++k) {
       const double tv = td[key][k].get<double>();
       if (std::abs(tv - x) > 0.01 * std::abs(tv)) continue;
-      nlohmann::json row = {{"value", v},           {"mu", td["mu"][k]},     {"mu_cov", td["mu_cov"][k]},
-                            {"area", td["area"][k]}, {"area_cov", td["area_cov"][k]}};
+      const RoughnessParameter p = dataset == "A"   ? RoughnessParameter::h0
+                                   : dataset == "B" ? RoughnessParameter::hurst
+                                                    : RoughnessParameter::q1_fraction;
+      nlohmann::json row = {{"value", v},        {"label", "thesis " + label_of(p, v)}, {"mu", td["mu"][k]},
+                            {"mu_cov", td["mu_cov"][k]}, {"area", td["area"][k]},       {"area_cov", td["area_cov"][k]}};
       if (d.contains("table_c1")) {  // kappa at the nearest log h0 of Table C.1 (its own grid)
         const auto& c1 = d["table_c1"];
         std::size_t best = 0;

@@ -57,7 +57,7 @@ nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_C
 nlohmann::json roughness_table(const std::vector<nlohmann::json>& runs);
 
 // The thesis's rows for `dataset` next to this sweep's (share/thesis/roughness-tables.json,
-// matched by value within 1 %): per row {value, mu, mu_cov, area, area_cov[, kappa]}; rows
+// matched by value within 1 %): per row {value, label, mu, mu_cov, area, area_cov[, kappa]}; rows
 // without a thesis counterpart are left out. Throws InputError when the file cannot be read.
 nlohmann::json thesis_rows(const std::string& dataset, const std::vector<double>& values);
 
