@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/launch.hpp"
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/contact/model_ladder.hpp"
@@ -163,18 +164,6 @@ int report_failure(const ContactCli& c, const std::vector<ContactStep>& steps, c
   std::fprintf(stderr, "\n  the %zu finished steps are kept%s\n", steps.size() - 1,
                c.json.empty() ? "" : (" in " + c.json + " (status \"failed\")").c_str());
   return 3;
-}
-
-// Rank and size of an mpirun launch, read from the launcher's environment (the analytic and
-// spectral models do not initialise MPI: they run on threads).
-std::pair<int, int> launch_rank_and_size() {
-  auto get = [](const char* a, const char* b) {
-    const char* v = std::getenv(a);
-    if (!v) v = std::getenv(b);
-    return v ? std::atoi(v) : -1;
-  };
-  const int rank = get("OMPI_COMM_WORLD_RANK", "PMI_RANK"), size = get("OMPI_COMM_WORLD_SIZE", "PMI_SIZE");
-  return {std::max(rank, 0), std::max(size, 1)};
 }
 
 // The model that runs, its validity checks, and the same as JSON for every output.

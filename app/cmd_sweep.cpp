@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/launch.hpp"
 #include "app/synth_options.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
@@ -34,7 +35,8 @@ struct SweepCommonCli {
 };
 
 void add_common_options(CLI::App& s, SweepCommonCli& c) {
-  s.add_option("--model", c.model, "contact model: fem (finite block) or spectral (periodic layer)")->capture_default_str();
+  s.add_option("--model", c.model, "contact model: fem (finite block), spectral (periodic layer) or auto (the ladder's "
+              "cheapest model valid for friction)")->capture_default_str();
   s.add_option("--uz", c.scene.uz, "final normal displacement of the block's top, m")->required();
   s.add_option("--ux", c.scene.ux, "final tangential displacement of the top, m")->required();
   s.add_option("--steps", c.scene.normal_steps, "normal load steps")->capture_default_str();
@@ -57,7 +59,22 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_flag("-q,--quiet", c.quiet, "print nothing but warnings and errors");
 }
 
-ContactModel parse_sweep_model(const std::string& name) {
+// --model: fem, spectral, or auto. Sweeps measure friction, so auto asks the ladder for the
+// cheapest model valid for a shear test (lib/contact/model_ladder.hpp) and says why.
+ContactModel parse_sweep_model(const std::string& name, bool quiet) {
+  if (name == "auto") {
+    ContactRequest req;
+    req.shear = true;
+    const ModelChoice choice = choose_model(req);
+    std::string why;
+    for (const auto& [m, checks] : choice.considered)
+      for (const auto& v : checks)
+        if (!v.passed) why += std::string("; ") + model_name(m) + ": " + v.name + " failed";
+    if (!choice.found) throw InputError("--model auto", "no model passes its validity checks" + why);
+    if (!quiet && launch_rank_and_size().first == 0)
+      std::fprintf(stderr, "model auto: %s, the cheapest model valid for friction%s\n", model_name(choice.model), why.c_str());
+    return choice.model;
+  }
   try {
     return parse_model(name);
   } catch (const std::invalid_argument& e) {
@@ -203,7 +220,7 @@ CoverageSweepSpec coverage_spec(const CoverageCli& c) {
   if (!synthetic && !load_surface(c.surface).map.periodic)  // bad files fail here, not in every run
     throw InputError(c.surface, "not a periodic surface; the contact scene repeats the surface");
   s.scene = c.common.scene;
-  s.scene.model = parse_sweep_model(c.common.model);
+  s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
   if (c.tiling != "torus" && c.tiling != "3x3") throw InputError("--tiling", "must be torus or 3x3");
   s.tiling = c.tiling == "torus" ? Tiling::torus : Tiling::three_by_three;
   s.connectivity = c.connectivity;
@@ -289,7 +306,7 @@ RoughnessSweepSpec roughness_spec(const RoughnessCli& c) {
     if (c.synth.given("--seed")) s.base.seed = o.seed;
   }
   s.scene = c.common.scene;
-  s.scene.model = parse_sweep_model(c.common.model);
+  s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
   check_roughness_spec(s);
   return s;
 }
