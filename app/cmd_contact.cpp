@@ -509,6 +509,9 @@ Command add_contact(CLI::App& root) {
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   s->add_flag("--facet-normals", c->opt.facet_normals,
               "constrain along the hit triangle's normal instead of the smooth vertex-normal blend");
+  s->add_option("--facet-band", c->opt.facet_band,
+                "with --facet-normals: blend into the smooth normal within this barycentric band of the "
+                "triangle edges (0 ... 1; 0: pure facet normals)");
   s->add_flag("--trace", c->opt.trace, "print every Signorini iteration (change, contact nodes, iterations, time)");
   return {s, [c] { return run_contact(*c); }};
 }

@@ -50,6 +50,7 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_option("--max-iterations", c.scene.max_iterations, "per step (0: the model's default)");
   s.add_flag("--facet-normals", c.scene.facet_normals,
              "fem: constrain contact nodes along the obstacle facet's normal (as `contact --facet-normals`)");
+  s.add_option("--facet-band", c.scene.facet_band, "with --facet-normals: smooth band at facet edges (as `contact`)");
   s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)");
   s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->required();
   s.add_option("--csv", c.csv, "also write the table as CSV");

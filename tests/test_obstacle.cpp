@@ -29,6 +29,25 @@ TEST(Obstacle, InterpolatesLatticeValuesAndIsPeriodic) {
   EXPECT_NEAR(o.height(0.5e-4, 1e-4), 0.5 * (m(0, 0) + m(1, 1)), 1e-18);
 }
 
+// The banded facet normal is the triangle's own normal away from its edges and the smooth
+// contact normal on them, so it is continuous across edges.
+TEST(Obstacle, BandedFacetNormalIsTheFacetInsideAndTheBlendOnEdges) {
+  const HeightMap m = random_map(6, 6, 3, 1e-4);
+  const PeriodicObstacle o(m);
+  // Lower triangle of cell (2, 3): barycentric weights (1-u, u-v, v).
+  const double dx = 1e-4, dy = 2e-4;
+  const Vec3 centroid{(2 + 2.0 / 3) * dx, (3 + 1.0 / 3) * dy, 0};
+  const Vec3 f = o.normal(centroid.x, centroid.y), b = o.banded_facet_normal(centroid, 0.25);
+  EXPECT_NEAR((f - b).norm(), 0.0, 1e-12);
+  const Vec3 on_edge{(2 + 0.5) * dx, (3 + 0.5) * dy, 0};  // the cell's diagonal
+  const Vec3 be = o.banded_facet_normal(on_edge, 0.25), ce = o.contact_normal(on_edge);
+  EXPECT_NEAR((be - ce).norm(), 0.0, 1e-12);
+  // Just either side of the diagonal: nearly the same normal (continuity), unlike the facets'.
+  const Vec3 lo{on_edge.x + 1e-9 * dx, on_edge.y, 0}, hi{on_edge.x - 1e-9 * dx, on_edge.y, 0};
+  EXPECT_LT((o.banded_facet_normal(lo, 0.25) - o.banded_facet_normal(hi, 0.25)).norm(), 1e-6);
+  EXPECT_GT((o.normal(lo.x, lo.y) - o.normal(hi.x, hi.y)).norm(), 1e-3);
+}
+
 TEST(Obstacle, PlaneHasExactNormalsAndVerticalGaps) {
   // A plane z = 0.2 x + 0.1 y is linear on every triangle (test away from the seam).
   HeightMap m(20, 20, 1e-4, 1e-4);

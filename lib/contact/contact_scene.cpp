@@ -58,6 +58,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm c
   o.max_penetration = 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
   o.comm = comm;
   o.facet_normals = s.facet_normals;
+  o.facet_band = s.facet_band;
   const ContactTestResult t = run_contact_test(obstacle, o);
   SceneResult r;
   r.model = "fem";
@@ -124,7 +125,8 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"tolerance", s.tolerance},
           {"spectral_tolerance", s.spectral_tolerance},
           {"max_iterations", s.max_iterations},
-          {"facet_normals", s.facet_normals}};
+          {"facet_normals", s.facet_normals},
+          {"facet_band", s.facet_band}};
 }
 
 }  // namespace wr

@@ -35,6 +35,7 @@ struct ContactScene {
   // direction of a frictionless contact force on the rigid surface) instead of the smooth blend
   // of the face's vertex normals; tangential forces then come from the obstacle's flanks.
   bool facet_normals = false;
+  double facet_band = 0;  // > 0: facet normals blended into the smooth ones near facet edges
 };
 
 struct SceneResult {

@@ -146,6 +146,16 @@ Vec3 PeriodicObstacle::contact_normal(const Vec3& q) const {
   return n.unit();
 }
 
+Vec3 PeriodicObstacle::banded_facet_normal(const Vec3& q, double band) const {
+  const double fx = q.x / dx_, fy = q.y / dy_;
+  const long i = floor_div(fx), j = floor_div(fy);
+  const double u = fx - i, v = fy - j;
+  // The smallest barycentric weight: 0 on an edge of the triangle, 1/3 at its centroid.
+  const double edge = u >= v ? std::min({1 - u, u - v, v}) : std::min({1 - v, u, v - u});
+  const double w = std::clamp(edge / band, 0.0, 1.0);
+  return (normal(q.x, q.y) * w + contact_normal(q) * (1 - w)).unit();
+}
+
 std::optional<RayHit> PeriodicObstacle::cast(const Vec3& p, const Vec3& d, double max_distance) const {
   const double len = d.norm();
   const Vec3 u = d * (1.0 / len);

@@ -36,6 +36,11 @@ class PeriodicObstacle {
   // which keeps the damped Signorini iteration from cycling between triangles; the gap
   // itself is measured to the exact triangulated surface.
   Vec3 contact_normal(const Vec3& q) const;
+  // The triangle's own normal inside it, blended into contact_normal() within `band` (a
+  // fraction of the barycentric range, (0, 1]) of its edges: the exact frictionless force
+  // direction on the facets, continuous across edges and vertices (there it lies in the
+  // normal cone of the kink), so the Signorini iteration does not cycle between facets.
+  Vec3 banded_facet_normal(const Vec3& q, double band) const;
   // Angle-weighted normal at lattice vertex (i, j).
   Vec3 vertex_normal(long i, long j) const;
 

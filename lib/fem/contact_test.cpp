@@ -66,6 +66,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.trace = opt.trace;
   load.progress_every_s = opt.progress_every_s;
   load.facet_normals = opt.facet_normals;
+  load.facet_band = opt.facet_band;
   res.face_nx = std::size_t(b.mesh.nx + 1);
   res.face_ny = std::size_t(b.mesh.ny + 1);
   const int total = opt.normal_steps + (opt.shear ? opt.shear_steps : 0);

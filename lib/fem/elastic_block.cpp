@@ -525,7 +525,9 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
         f.g = -INFINITY;
         continue;
       }
-      f.normal = load.facet_normals ? load.obstacle->normal(hit->point.x, hit->point.y) : hit->normal;
+      f.normal = !load.facet_normals      ? hit->normal
+                 : load.facet_band > 0 ? load.obstacle->banded_facet_normal(hit->point, load.facet_band)
+                                       : load.obstacle->normal(hit->point.x, hit->point.y);
       f.g = f.normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q, N the constraint normal
     }
     VecRestoreArrayRead(m.face_u, &fu);

@@ -46,6 +46,7 @@ struct ContactLoad {
   bool follow_geometry = true;   // Algorithm 1 (rays, rotated normals); false: one solve, u_z >= h
   double damping = 0.8;          // alpha_c
   bool facet_normals = false;     // constraint normal: the hit triangle's (true) or the smooth blend
+  double facet_band = 0;          // > 0: facet normals blended into the smooth ones near edges
   double tolerance = 1e-5;       // relative change of the contact-face displacement
   int max_outer_iterations = 300;
   double ksp_rtol = 1e-7;         // CG tolerance of the final linearisations
