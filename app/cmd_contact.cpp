@@ -326,6 +326,7 @@ int run_contact(ContactCli c) {
   if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
   ContactRequest req;
   req.shear = c.problem == "shear";
+  req.refine = c.opt.refine;
   req.load_control = c.pressure > 0;
   req.pressure = c.pressure;
   req.rms_slope = rms_slope_finite_difference(s.map);

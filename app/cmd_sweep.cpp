@@ -171,6 +171,18 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
                 cp.dir().c_str());
     std::printf("  wall %.1f s on %d rank(s)\n", wall, ranks);
   }
+  // Results outside their model's validity are flagged in every output; say so here too.
+  int invalid = 0;
+  std::string why;
+  for (const auto& r : runs)
+    if (r.contains("contact") && r["contact"]["validity"].is_object() && !r["contact"]["validity"].value("valid", true)) {
+      ++invalid;
+      for (const auto& ch : r["contact"]["validity"]["checks"])
+        if (why.empty() && !ch.value("passed", true)) why = ch.value("check", "") + ": " + ch.value("detail", "");
+    }
+  if (invalid > 0)
+    std::fprintf(stderr, "wetroad: warning: %d of %zu runs are outside their model's validity (%s)\n", invalid,
+                 runs.size(), why.c_str());
   if (failed_total > 0) {
     std::fprintf(stderr, "wetroad: error: %d of %zu runs failed (kept in the outputs with their reasons, left out of "
                          "the means)\n", failed_total, runs.size());

@@ -94,6 +94,15 @@ TEST(ModelLadder, AutoPicksTheCheapestValidModel) {
   EXPECT_EQ(choose_model(r).model, ContactModel::fem);
   EXPECT_THROW(parse_model("auto"), std::invalid_argument);
   EXPECT_EQ(parse_model("spectral"), ContactModel::spectral);
+  // Friction at refine 1 is flagged (not resolved) but no other model would do better: auto
+  // keeps the FEM, and the result is marked invalid.
+  r.refine = 1;
+  c = choose_model(r);
+  ASSERT_TRUE(c.found);
+  EXPECT_EQ(c.model, ContactModel::fem);
+  EXPECT_FALSE(all_passed(c.considered.back().second));
+  r.refine = 2;
+  EXPECT_TRUE(all_passed(validity_checks(ContactModel::fem, r)));
 }
 
 }  // namespace

@@ -103,6 +103,7 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   check_contact_scene(s);
   ContactRequest req;
   req.shear = s.shear;
+  req.refine = s.model == ContactModel::fem ? s.refine : 0;
   req.rms_slope = rms_slope_finite_difference(obstacle, 1);
   req.e_star = s.young / (1 - s.poisson * s.poisson);
   const auto checks = validity_checks(s.model, req);

@@ -18,12 +18,16 @@ struct ContactRequest {
   double pressure = 0;        // Pa, final mean pressure (load control)
   double rms_slope = 0;       // of the obstacle
   double e_star = 0;          // Pa
+  int refine = 0;             // FEM contact-face refinement (0: not known / not applicable)
 };
 
 struct ValidityCheck {
   std::string name;
   bool passed = false;
   std::string detail;  // the numbers or the reason
+  // False for accuracy flags that no other model would fix (the result is flagged, but `auto`
+  // keeps the model).
+  bool decides_model = true;
 };
 
 // Small-slope limit of the spectral model (rms slope). Provisional: the definition of a
@@ -48,7 +52,7 @@ struct ModelChoice {
   ContactModel model = ContactModel::fem;
   std::vector<std::pair<ContactModel, std::vector<ValidityCheck>>> considered;  // cheapest first
 };
-// The cheapest model whose checks pass; `found` false when none does.
+// The cheapest model whose model-deciding checks pass; `found` false when none does.
 ModelChoice choose_model(const ContactRequest& r);
 
 }  // namespace wr
