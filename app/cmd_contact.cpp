@@ -13,6 +13,7 @@
 #include "app/launch.hpp"
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
+#include "lib/contact/contact_scene.hpp"
 #include "lib/contact/model_ladder.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/core/errors.hpp"
@@ -63,9 +64,9 @@ nlohmann::json step_json(const ContactStep& s) {
           {"residual_history", s.history}};
 }
 
-// --thickness: metres or "inf" (half-space); empty gives `block_height`.
-double parse_thickness(const std::string& text, double block_height) {
-  if (text.empty()) return block_height;
+// --thickness: metres or "inf" (half-space); empty gives `fallback`.
+double parse_thickness(const std::string& text, double fallback) {
+  if (text.empty()) return fallback;
   if (text == "inf") return std::numeric_limits<double>::infinity();
   std::size_t used = 0;
   double t = 0;
@@ -234,24 +235,27 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
   LoadedSurface s;
   s.source = surface.source;
   s.map = resample_triangulated(surface.map, c.opt.refine);
-  SpectralTestOptions o;
-  o.uz = c.opt.uz;
-  o.pressure = c.pressure;
-  o.steps = c.steps;
-  o.shear = c.problem == "shear";
-  o.ux = c.opt.ux;
-  o.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
-  o.damping = c.opt.damping;
-  o.geometry_tolerance = c.opt.tolerance;
-  if (c.max_iterations > 0) (o.shear ? o.max_geometry_iterations : o.solver.max_iterations) = c.max_iterations;
-  o.body.young = c.opt.young;
-  o.body.poisson = c.opt.poisson;
-  o.body.thickness = parse_thickness(c.thickness, c.opt.height > 0 ? c.opt.height : s.map.lx());
-  o.solver.tolerance = c.spectral_tol;
-  o.solver.threads = c.threads;
+  ContactScene scene;
+  scene.model = ContactModel::spectral;
+  scene.shear = c.problem == "shear";
+  scene.uz = c.opt.uz;
+  scene.pressure = c.pressure;
+  scene.ux = c.opt.ux;
+  scene.normal_steps = c.steps;
+  scene.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
+  scene.refine = c.opt.refine;
+  scene.young = c.opt.young;
+  scene.poisson = c.opt.poisson;
+  scene.height = c.opt.height;
+  scene.thickness = parse_thickness(c.thickness, 0.0);  // 0: the block height
+  scene.damping = c.opt.damping;
+  scene.tolerance = c.opt.tolerance;
+  scene.spectral_tolerance = c.spectral_tol;
+  scene.max_iterations = c.max_iterations;
+  scene.threads = c.threads;
+  scene.planning = FftPlanning::measure;  // one run: the machine's fastest plans
+  SpectralTestOptions o = spectral_test_options(scene, s.map);
   o.face_maps = !c.out.empty();
-  o.rms_slope = rms_slope_finite_difference(s.map);
-  check_spectral_test_options(o);
   warn_if_invalid(validity.model, validity.checks);
   const bool talk = !c.quiet;
   if (talk) {

@@ -71,22 +71,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm c
 
 SceneResult run_spectral(const HeightMap& obstacle, const ContactScene& s) {
   const HeightMap m = resample_triangulated(obstacle, s.refine);  // the FEM's face lattice
-  SpectralTestOptions o;
-  o.uz = s.uz;
-  o.steps = s.normal_steps;
-  o.shear = s.shear;
-  o.ux = s.ux;
-  o.shear_steps = s.shear_steps;
-  o.geometry_tolerance = s.tolerance;
-  if (s.max_iterations > 0) (o.shear ? o.max_geometry_iterations : o.solver.max_iterations) = s.max_iterations;
-  o.body.young = s.young;
-  o.body.poisson = s.poisson;
-  o.body.thickness = s.height > 0 ? s.height : m.lx();
-  o.solver.tolerance = s.spectral_tolerance;
-  o.solver.threads = s.threads;
-  o.solver.planning = FftPlanning::estimate;  // bit-identical runs whatever the machine's wisdom
-  o.rms_slope = rms_slope_finite_difference(m, 1);
-  check_spectral_test_options(o);
+  const SpectralTestOptions o = spectral_test_options(s, m);
   const SpectralTestResult t = run_spectral_contact_test(m, o);
   SceneResult r;
   r.model = "spectral";
@@ -113,6 +98,28 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   return r;
 }
 
+SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap& lattice) {
+  SpectralTestOptions o;
+  o.uz = s.uz;
+  o.pressure = s.pressure;
+  o.steps = s.normal_steps;
+  o.shear = s.shear;
+  o.ux = s.ux;
+  o.shear_steps = s.shear_steps;
+  o.damping = s.damping;
+  o.geometry_tolerance = s.tolerance;
+  if (s.max_iterations > 0) (o.shear ? o.max_geometry_iterations : o.solver.max_iterations) = s.max_iterations;
+  o.body.young = s.young;
+  o.body.poisson = s.poisson;
+  o.body.thickness = s.thickness > 0 ? s.thickness : s.height > 0 ? s.height : lattice.lx();
+  o.solver.tolerance = s.spectral_tolerance;
+  o.solver.threads = s.threads;
+  o.solver.planning = s.planning;
+  o.rms_slope = rms_slope_finite_difference(lattice, s.threads);
+  check_spectral_test_options(o);
+  return o;
+}
+
 nlohmann::json contact_scene_json(const ContactScene& s) {
   return {{"model", model_name(s.model)}, {"shear", s.shear},
           {"uz", s.uz},
@@ -123,6 +130,9 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"E", s.young},
           {"nu", s.poisson},
           {"height", s.height},
+          {"thickness", std::isfinite(s.thickness) ? nlohmann::json(s.thickness) : nlohmann::json("inf")},
+          {"pressure", s.pressure},
+          {"damping", s.damping},
           {"tolerance", s.tolerance},
           {"spectral_tolerance", s.spectral_tolerance},
           {"max_iterations", s.max_iterations},

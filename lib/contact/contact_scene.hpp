@@ -14,7 +14,9 @@
 
 #include "lib/contact/contact_step.hpp"
 #include "lib/contact/model_ladder.hpp"
+#include "lib/core/fft.hpp"
 #include "lib/core/height_map.hpp"
+#include "lib/spectral/spectral_contact_test.hpp"
 
 namespace wr {
 
@@ -26,11 +28,15 @@ struct ContactScene {
   int normal_steps = 3, shear_steps = 3;
   int refine = 1;             // contact-face spacing = obstacle spacing / refine
   double young = 1.0, poisson = 0.45;  // Pa, -
-  double height = 0;          // m, block height (0: the period, a cube); the spectral layer's thickness
+  double height = 0;          // m, block height (0: the period, a cube)
+  double thickness = 0;       // m, spectral layer (0: the block height; +inf: the half-space)
+  double pressure = 0;        // Pa, spectral load control instead of uz (normal contact only)
+  double damping = 0.8;       // of the geometry (Signorini) iteration
   double tolerance = 1e-4;    // relative change per geometry (Signorini) iteration
   double spectral_tolerance = 1e-8;  // Polonsky-Keer error
   int max_iterations = 0;     // per step (0: the model's default)
   int threads = 1;            // spectral FFT threads
+  FftPlanning planning = FftPlanning::estimate;  // spectral FFT plans (lib/core/fft.hpp)
   // FEM: constrain each contact node along the normal of the obstacle facet its ray hits (the
   // direction of a frictionless contact force on the rigid surface) instead of the smooth blend
   // of the face's vertex normals; tangential forces then come from the obstacle's flanks.
@@ -59,5 +65,9 @@ void check_contact_scene(const ContactScene& s);
 SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
 
 nlohmann::json contact_scene_json(const ContactScene& s);
+
+// The spectral model's options for the scene on `lattice` (the obstacle already resampled to
+// the face lattice, resample_triangulated). Throws InputError as check_spectral_test_options.
+SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap& lattice);
 
 }  // namespace wr
