@@ -21,7 +21,7 @@ struct ReportCli {
 int run_report(const ReportCli& c) {
   ReportInput in;
   in.title = c.title;
-  for (const auto& s : c.sweeps) in.sweeps.emplace_back(s, read_sweep_hdf5(s, coverage_layout()));
+  for (const auto& s : c.sweeps) in.sweeps.emplace_back(s, read_any_sweep_hdf5(s));
   if (!c.measured.empty()) {
     in.measured = read_measured_skid_csv(c.measured);
     in.measured_path = c.measured;
@@ -45,7 +45,7 @@ Command add_report(CLI::App& root) {
       "predicted SN40R = 100 mu against MPD next to the measured sites, the MPD of each peak, and the IFI\n"
       "speed constant Sp = 14.2 + 89.7 MPD per site (F60 too when the device constants are given).\n"
       "Example: wetroad report --sweep sweep.h5 --measured sites.csv -o report.html");
-  s->add_option("--sweep", c->sweeps, "coverage sweep result (wetroad sweep-coverage --out); repeatable")
+  s->add_option("--sweep", c->sweeps, "sweep result (sweep-coverage or sweep-roughness --out); repeatable")
       ->required()
       ->check(CLI::ExistingFile);
   s->add_option("--measured", c->measured, "measured skid numbers: CSV site,mpd_mm,sn40r[,speed_kmh]")

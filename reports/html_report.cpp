@@ -127,6 +127,40 @@ std::string coverage_table_html(const std::string& file, const nlohmann::json& s
   return o.str();
 }
 
+std::string roughness_table_html(const std::string& file, const nlohmann::json& sweep) {
+  std::ostringstream o;
+  o << "<table><tr><th>surfaces</th><th>&mu; peak</th><th>95 % CI</th><th>CoV</th><th>A/A0 at peak</th>"
+       "<th>A/A0 normal</th><th>&kappa; (eq. 5.4)</th><th>h0 [mm]</th><th>n</th><th>failed</th><th>source ("
+    << escape(file) << ")</th></tr>\n";
+  for (const auto& r : sweep["table"]) {
+    std::string runs;
+    for (const auto& i : r["runs"]) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%s/runs/run-%04d", runs.empty() ? "" : " ", i.get<int>());
+      runs += b;
+    }
+    o << "<tr><td>" << escape(r["label"].get<std::string>()) << "</td><td>" << fmt(num(r["mu_peak"]["mean"]))
+      << "</td><td>&plusmn; " << fmt(num(r["mu_peak"]["ci95"])) << "</td><td>" << fmt(100 * num(r["mu_peak"]["cov"]), "%.1f %%")
+      << "</td><td>" << fmt(num(r["area_at_peak"]["mean"])) << "</td><td>" << fmt(num(r["area_normal"]["mean"]))
+      << "</td><td>" << fmt(num(r["kappa"]["mean"])) << "</td><td>" << fmt(1e3 * num(r["h0"]["mean"])) << "</td><td>"
+      << r["mu_peak"]["n"].get<int>() << "</td><td>" << r["failed"].get<int>() << "</td><td class=\"src\">" << runs
+      << "</td></tr>\n";
+  }
+  o << "</table>\n";
+  if (!sweep["thesis"].empty()) {
+    o << "<p>The thesis (Tables D.1&ndash;D.3 and C.1: 300 x 300, &delta;&Gamma; = &delta;&theta;/2, uz 9 mm, 10 "
+         "realizations; its A' beside A/A0 at peak):</p><table><tr><th>surfaces</th><th>&mu;</th><th>CoV</th>"
+         "<th>A'</th><th>CoV</th><th>&kappa;</th></tr>";
+    for (const auto& t : sweep["thesis"])
+      o << "<tr><td>" << escape(t.value("label", "")) << "</td><td>" << fmt(num(t["mu"])) << "</td><td>"
+        << fmt(100 * num(t["mu_cov"]), "%.1f %%") << "</td><td>" << fmt(num(t["area"])) << "</td><td>"
+        << fmt(100 * num(t["area_cov"]), "%.1f %%") << "</td><td>" << (t.contains("kappa") ? fmt(num(t["kappa"])) : "")
+        << "</td></tr>";
+    o << "</table>\n";
+  }
+  return o.str();
+}
+
 std::string scene_html(const std::string& file, const nlohmann::json& sweep) {
   const auto& sp = sweep["spec"];
   const auto& sc = sp["scene"];
@@ -135,7 +169,13 @@ std::string scene_html(const std::string& file, const nlohmann::json& sweep) {
   auto row = [&](const std::string& k, const std::string& v) { o << "<tr><th>" << k << "</th><td>" << v << "</td></tr>"; };
   row("file", escape(file));
   const auto& s = sp["surface"];
-  if (s.value("synthetic", false))
+  if (sp.contains("dataset"))
+    row("surfaces", "dataset " + escape(sp["dataset"].get<std::string>()) + ": " + escape(sp["parameter"].get<std::string>()) +
+                        " swept over " + std::to_string(sp["values"].size()) + " values; " + fmt(num(s["nx"]), "%.0f") +
+                        " x " + fmt(num(s["ny"]), "%.0f") + ", dx " + fmt(num(s["dx"])) + " m, H " + fmt(num(s["hurst"])) +
+                        ", h0 " + fmt(num(s["h0"])) + " m unless swept, q0/qL " + fmt(num(s["q0_ratio"])) +
+                        ", seeds from " + fmt(num(s["seed"]), "%.0f"));
+  else if (s.value("synthetic", false))
     row("surface", "synthetic self-affine: " + fmt(num(s["nx"]), "%.0f") + " x " + fmt(num(s["ny"]), "%.0f") +
                        ", dx " + fmt(num(s["dx"])) + " m, h0 " + fmt(num(s["h0"])) + " m, H " + fmt(num(s["hurst"])) +
                        ", q0/qL " + fmt(num(s["q0_ratio"])) + ", seeds from " + fmt(num(s["seed"]), "%.0f"));
@@ -149,8 +189,9 @@ std::string scene_html(const std::string& file, const nlohmann::json& sweep) {
                    fmt(num(sc["tolerance"])) +
                    (sc.value("facet_normals", false) ? "; contact forces along the obstacle facets' normals"
                                                      : "; contact forces along the blended obstacle normals"));
-  row("water", "drainage " + escape(sp["tiling"].get<std::string>()) + ", " + fmt(num(sp["connectivity"]), "%.0f") +
-                   "-connected; drained fills up to the drained limit, standing water beyond");
+  if (sp.contains("tiling"))
+    row("water", "drainage " + escape(sp["tiling"].get<std::string>()) + ", " + fmt(num(sp["connectivity"]), "%.0f") +
+                     "-connected; drained fills up to the drained limit, standing water beyond");
   const auto& pv = sweep["provenance"];
   row("made by", escape("wetroad " + pv.value("version", std::string("?")) + ", " + pv.value("command", std::string("")) +
                         ", " + pv.value("created", std::string(""))));
@@ -168,13 +209,22 @@ struct Point {
 // Predicted SN40R = 100 mu of the drained (skid-test) road: per realization, the run at the
 // largest drained coverage (the dry run when there is none).
 std::vector<Point> predicted_points(const std::string& file, const nlohmann::json& sweep) {
+  std::vector<Point> pts;
+  if (sweep.value("kind", "") == "roughness") {  // every surface of the sweep, dry
+    for (const auto& r : sweep["runs"])
+      if (r.value("status", "") == "ok") {
+        char b[64];
+        std::snprintf(b, sizeof b, "/runs/run-%04d", r["index"].get<int>());
+        pts.push_back({1e3 * num(r["mpd"]), 100 * num(r["contact"]["mu_peak"]), file + " " + b});
+      }
+    return pts;
+  }
   std::map<int, const nlohmann::json*> pick;
   for (const auto& r : sweep["runs"]) {
     if (r.value("status", "") != "ok" || r.value("water", "") == "stagnant") continue;
     const int z = r["realization"].get<int>();
     if (!pick.count(z) || num(r["target"]) > num((*pick[z])["target"])) pick[z] = &r;
   }
-  std::vector<Point> pts;
   for (const auto& [z, r] : pick) {
     char b[64];
     std::snprintf(b, sizeof b, "/runs/run-%04d", (*r)["index"].get<int>());
@@ -189,8 +239,9 @@ std::string skid_section(const ReportInput& in, const std::string& chart_dir) {
     for (const auto& p : predicted_points(file, sweep)) pred.push_back(p);
   std::ostringstream o;
   o << "<h2>Skid number against mean profile depth</h2>\n"
-       "<p>Predicted SN40R = 100 &mu;, &mu; the static (elastostatic) friction of the shear test on the drained wet "
-       "road (largest drained coverage of each realization); MPD of the dry surface per ISO 13473-1.</p>\n";
+       "<p>Predicted SN40R = 100 &mu;, &mu; the static (elastostatic) friction of the shear test: for coverage "
+       "sweeps on the drained wet road (largest drained coverage of each realization), for roughness sweeps on each "
+       "surface; MPD of the dry surface per ISO 13473-1.</p>\n";
   PlotSpec spec{"SN40R against MPD", "MPD [mm]", "SN40R", false, false, {}};
   PlotSeries ps{"predicted (100 mu)", {}, {}, "points", {}};
   for (const auto& p : pred) {
@@ -332,7 +383,7 @@ PeakEstimate peak_position(const std::vector<double>& x, const std::vector<doubl
 }
 
 void write_html_report(const std::string& path, const ReportInput& in) {
-  if (in.sweeps.empty()) throw InputError("--sweep", "give at least one coverage sweep (wetroad sweep-coverage --out)");
+  if (in.sweeps.empty()) throw InputError("--sweep", "give at least one sweep (wetroad sweep-coverage or sweep-roughness --out)");
   const std::string charts = temporary_sibling(path) + ".charts";
   std::filesystem::create_directories(charts);
   std::ostringstream o;
@@ -344,6 +395,16 @@ void write_html_report(const std::string& path, const ReportInput& in) {
     int k = 0;
     for (const auto& [file, sweep] : in.sweeps) {
       const std::string dir = charts + "/sweep" + std::to_string(k++);
+      if (sweep.value("kind", "") == "roughness") {
+        const auto files = write_roughness_plots(dir, sweep);
+        o << "<h2>Friction against roughness: " << escape(file) << "</h2>\n"
+          << scene_html(file, sweep) << validity_section(file, sweep)
+          << figure(files[0], "Static friction against the swept parameter, with the thesis's Tables D.")
+          << figure(files[1], "Contact area fraction at the friction peak, with the thesis's A'.")
+          << roughness_table_html(file, sweep)
+          << figure(files[2], "kappa of the quartic fit of each normal-load curve (eq. 5.4), with Table C.1.");
+        continue;
+      }
       const auto files = write_coverage_plots(dir, sweep);
       o << "<h2>Friction against water coverage: " << escape(file) << "</h2>\n"
         << scene_html(file, sweep) << validity_section(file, sweep)

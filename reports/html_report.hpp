@@ -1,11 +1,13 @@
 #pragma once
 // `wetroad report`: one self-contained HTML file (inline CSS and SVG charts drawn by gnuplot,
-// no external reference, readable offline) from coverage sweeps (reports/sweep_outputs.hpp)
-// and, optionally, measured skid numbers.
+// no external reference, readable offline) from coverage and roughness sweeps
+// (reports/sweep_outputs.hpp, read_any_sweep_hdf5) and, optionally, measured skid numbers.
 //
-// Sections: the scene and model of every sweep with the validity flags of every run; friction
-// and contact area against water coverage (Figure 5.25), the wet PSDs (Figure 5.26) and the pool
-// depth, each with its table; the skid-number comparison: predicted SN40R = 100 mu against MPD
+// Sections: the scene and model of every sweep with the validity flags of every run; for a
+// coverage sweep friction and contact area against water coverage (Figure 5.25), the wet PSDs
+// (Figure 5.26) and the pool depth; for a roughness sweep mu, A/A0 and kappa against the swept
+// parameter beside the thesis's Tables D and C.1; each with its table; the skid-number
+// comparison: predicted SN40R = 100 mu against MPD
 // next to the measured (MPD, SN40R) pairs, the MPD of the friction peak of each (quadratic fit,
 // or the largest value when the fit has no maximum), and the IFI speed constant
 // Sp = 14.2 + 89.7 MPD [km/h, MPD in mm] (ASTM E1960) per measured site; with device constants

@@ -92,6 +92,17 @@ nlohmann::json read_sweep_hdf5(const std::string& path, const SweepTableLayout& 
   }
 }
 
+nlohmann::json read_any_sweep_hdf5(const std::string& path) {
+  const std::string kind = Hdf5Reader(path).attr_string("/", "kind").value_or("");
+  for (const auto* layout : {&coverage_layout(), &roughness_layout()})
+    if (kind == layout->kind) {
+      nlohmann::json j = read_sweep_hdf5(path, *layout);
+      j["kind"] = layout == &coverage_layout() ? "coverage" : "roughness";
+      return j;
+    }
+  throw InputError(path, "not a sweep result (written by `wetroad sweep-coverage` or `sweep-roughness` --out)");
+}
+
 void write_sweep_csv(const std::string& path, const nlohmann::json& table, const SweepTableLayout& layout) {
   std::ostringstream o;
   o.precision(17);  // round-trip: a resumed or MPI sweep is compared to the digit

@@ -31,6 +31,8 @@ const SweepTableLayout& roughness_layout();
 void write_sweep_hdf5(const std::string& path, const nlohmann::json& sweep, const SweepTableLayout& layout);
 // Reads back the JSON of write_sweep_hdf5 (InputError when the file is not that kind of sweep).
 nlohmann::json read_sweep_hdf5(const std::string& path, const SweepTableLayout& layout);
+// Either kind: the JSON with "kind" set to "coverage" or "roughness" (InputError otherwise).
+nlohmann::json read_any_sweep_hdf5(const std::string& path);
 void write_sweep_csv(const std::string& path, const nlohmann::json& table, const SweepTableLayout& layout);
 // Returns the chart files written into `dir` (created if missing): mu_ratio.svg, area.svg,
 // wet_psd.svg, pool_depth.svg.

@@ -259,6 +259,52 @@ TEST(RoughnessSweep, RunsAndTable) {
   EXPECT_EQ(t[0]["label"], "H = 0.7");
 }
 
+// A roughness sweep in the report: its own section and charts, its surfaces' (MPD, 100 mu) in the
+// skid chart, every named run group in the HDF5; a coverage-only reader refuses it.
+TEST(Report, RoughnessSweepSection) {
+  RoughnessSweepSpec s = roughness_dataset("A");
+  s.values = {1.72e-4, 3.05e-4};
+  s.realizations = 1;
+  s.base.nx = s.base.ny = 32;
+  s.base.dx = 1e-3;
+  s.scene.model = ContactModel::spectral;
+  s.scene.uz = 1e-3;
+  s.scene.ux = 1e-3;
+  s.scene.normal_steps = 4;
+  s.scene.shear_steps = 1;
+  std::vector<nlohmann::json> runs;
+  for (int i = 0; i < roughness_run_count(s); ++i) runs.push_back(run_roughness_point(s, i, MPI_COMM_NULL, 1));
+  EXPECT_GT(runs[1]["mpd"].get<double>(), runs[0]["mpd"].get<double>());  // rougher: deeper texture
+  const nlohmann::json sweep = {{"spec", roughness_spec_json(s)}, {"table", roughness_table(runs)}, {"runs", runs},
+                                {"thesis", thesis_rows("A", s.values)}, {"failed_runs", 0},
+                                {"provenance", {{"timings", {{"total", 1.0}, {"ranks", 1}}}}}};
+  const std::string dir = ::testing::TempDir() + "wetroad-roughness-report";
+  std::filesystem::create_directories(dir);
+  const std::string h5 = dir + "/r.h5", html = dir + "/r.html";
+  write_sweep_hdf5(h5, sweep, roughness_layout());
+  EXPECT_THROW(read_sweep_hdf5(h5, coverage_layout()), InputError);
+  ReportInput in;
+  in.sweeps.emplace_back(h5, read_any_sweep_hdf5(h5));
+  EXPECT_EQ(in.sweeps[0].second["kind"], "roughness");
+  write_html_report(html, in);
+  std::stringstream ss;
+  ss << std::ifstream(html).rdbuf();
+  const std::string doc = ss.str();
+  EXPECT_NE(doc.find("Friction against roughness"), std::string::npos);
+  EXPECT_NE(doc.find("thesis h0 = 0.305 mm"), std::string::npos);
+  std::size_t svgs = 0;
+  for (auto p = doc.find("<svg"); p != std::string::npos; p = doc.find("<svg", p + 1)) ++svgs;
+  EXPECT_EQ(svgs, 4u);  // mu, area, kappa, skid numbers
+  Hdf5Reader r(h5);
+  for (int i = 0; i < 2; ++i) {
+    char g[32];
+    std::snprintf(g, sizeof g, "/runs/run-%04d", i);
+    EXPECT_NE(doc.find(g), std::string::npos) << g;
+    EXPECT_TRUE(r.has_group(g)) << g;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Report, PeakOfAQuadraticAndItsFallback) {
   const std::vector<double> x = {0.2, 0.6, 1.0, 1.4, 1.8};
   std::vector<double> y;

@@ -12,6 +12,7 @@
 #include "lib/core/errors.hpp"
 #include "lib/sweep/sample_statistics.hpp"
 #include "roads/height_stats.hpp"
+#include "roads/mpd.hpp"
 
 namespace wr {
 namespace {
@@ -119,6 +120,9 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
   nlohmann::json rec = {{"index", index},     {"value_index", vi}, {"value", value},
                         {"label", label_of(s.parameter, value)}, {"realization", r}, {"seed", p.seed},
                         {"h0", height_stats(m, threads).sq},     {"rms_slope", rms_slope_finite_difference(m, threads)}};
+  const MpdResult mpd = mpd_of_map(m, std::vector<unsigned char>(m.size(), 0), {}, threads);
+  rec["mpd"] = mpd.mpd;
+  rec["mpd_note"] = mpd.note;
   const double wall_surface = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   ContactScene scene = s.scene;

@@ -11,6 +11,7 @@
 // seeds for every value (as the thesis's datasets vary one parameter of the same surfaces).
 //
 // Run record (JSON): index, value_index, value, realization, seed, h0 (measured rms height), rms_slope,
+// mpd (ISO 13473-1 over the map, with mpd_note when its baseline or filter departs from it),
 // status, message, contact {model, mu_peak, ux_peak, area_at_peak, area_normal, fz_normal,
 // failed, message, unknowns, steps [...], validity}, normal_curve {sigma_star, area},
 // quartic {Pi, Omega, Lambda, kappa, r2} (null with fewer than 4 normal steps or a singular fit),
