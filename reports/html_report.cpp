@@ -97,18 +97,30 @@ std::string validity_section(const std::string& file, const nlohmann::json& swee
   return o.str();
 }
 
+// The HDF5 group of run `index` (reports/sweep_outputs.hpp).
+std::string run_group(int index) {
+  char b[32];
+  std::snprintf(b, sizeof b, "/runs/run-%04d", index);
+  return b;
+}
+
+// The source column of a table row: its runs' HDF5 groups.
+std::string run_groups(const nlohmann::json& indices) {
+  std::string out;
+  for (const auto& i : indices) {
+    if (!out.empty()) out += ' ';
+    out += run_group(i.get<int>());
+  }
+  return out;
+}
+
 std::string coverage_table_html(const std::string& file, const nlohmann::json& sweep) {
   std::ostringstream o;
   o << "<table><tr><th>target</th><th>water</th><th>coverage</th><th>&mu; peak</th><th>&mu;<sub>wet</sub>/&mu;<sub>dry</sub></th>"
        "<th>95 % CI</th><th>A/A0 normal</th><th>A/A0 at peak</th><th>pool depth [mm]</th><th>wet rms height [mm]</th>"
        "<th>n</th><th>failed</th><th>source (" << escape(file) << ")</th></tr>\n";
   for (const auto& r : sweep["table"]) {
-    std::string runs;
-    for (const auto& i : r["runs"]) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%s/runs/run-%04d", runs.empty() ? "" : " ", i.get<int>());
-      runs += b;
-    }
+    const std::string runs = run_groups(r["runs"]);
     o << "<tr><td>" << fmt(100 * num(r["target"]), "%.1f %%") << "</td><td>" << escape(r["water"].get<std::string>())
       << "</td><td>" << fmt(100 * num(r["coverage"]["mean"]), "%.1f %%") << "</td><td>" << fmt(num(r["mu_peak"]["mean"]))
       << "</td><td>" << fmt(100 * num(r["mu_ratio"]["mean"]), "%.1f %%") << "</td><td>&plusmn; "
@@ -133,12 +145,7 @@ std::string roughness_table_html(const std::string& file, const nlohmann::json& 
        "<th>A/A0 normal</th><th>&kappa; (eq. 5.4)</th><th>h0 [mm]</th><th>n</th><th>failed</th><th>source ("
     << escape(file) << ")</th></tr>\n";
   for (const auto& r : sweep["table"]) {
-    std::string runs;
-    for (const auto& i : r["runs"]) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%s/runs/run-%04d", runs.empty() ? "" : " ", i.get<int>());
-      runs += b;
-    }
+    const std::string runs = run_groups(r["runs"]);
     o << "<tr><td>" << escape(r["label"].get<std::string>()) << "</td><td>" << fmt(num(r["mu_peak"]["mean"]))
       << "</td><td>&plusmn; " << fmt(num(r["mu_peak"]["ci95"])) << "</td><td>" << fmt(100 * num(r["mu_peak"]["cov"]), "%.1f %%")
       << "</td><td>" << fmt(num(r["area_at_peak"]["mean"])) << "</td><td>" << fmt(num(r["area_normal"]["mean"]))
@@ -212,11 +219,8 @@ std::vector<Point> predicted_points(const std::string& file, const nlohmann::jso
   std::vector<Point> pts;
   if (sweep.value("kind", "") == "roughness") {  // every surface of the sweep, dry
     for (const auto& r : sweep["runs"])
-      if (r.value("status", "") == "ok") {
-        char b[64];
-        std::snprintf(b, sizeof b, "/runs/run-%04d", r["index"].get<int>());
-        pts.push_back({1e3 * num(r["mpd"]), 100 * num(r["contact"]["mu_peak"]), file + " " + b});
-      }
+      if (r.value("status", "") == "ok")
+        pts.push_back({1e3 * num(r["mpd"]), 100 * num(r["contact"]["mu_peak"]), file + " " + run_group(r["index"].get<int>())});
     return pts;
   }
   std::map<int, const nlohmann::json*> pick;
@@ -225,11 +229,9 @@ std::vector<Point> predicted_points(const std::string& file, const nlohmann::jso
     const int z = r["realization"].get<int>();
     if (!pick.count(z) || num(r["target"]) > num((*pick[z])["target"])) pick[z] = &r;
   }
-  for (const auto& [z, r] : pick) {
-    char b[64];
-    std::snprintf(b, sizeof b, "/runs/run-%04d", (*r)["index"].get<int>());
-    pts.push_back({1e3 * num((*r)["ground_mpd"]), 100 * num((*r)["contact"]["mu_peak"]), file + " " + b});
-  }
+  for (const auto& [z, r] : pick)
+    pts.push_back({1e3 * num((*r)["ground_mpd"]), 100 * num((*r)["contact"]["mu_peak"]),
+                   file + " " + run_group((*r)["index"].get<int>())});
   return pts;
 }
 

@@ -209,6 +209,22 @@ TEST(Report, EveryTableNumberTracesToTheHdf5) {
   std::filesystem::remove_all(dir);
 }
 
+// A thesis dataset on 32 x 32 surfaces over 3.2 cm with the spectral model: seconds, not hours.
+RoughnessSweepSpec small_roughness_sweep(const std::string& dataset, std::vector<double> values, int realizations,
+                                         int normal_steps) {
+  RoughnessSweepSpec s = roughness_dataset(dataset);
+  s.values = std::move(values);
+  s.realizations = realizations;
+  s.base.nx = s.base.ny = 32;
+  s.base.dx = 1e-3;
+  s.scene.model = ContactModel::spectral;
+  s.scene.uz = 1e-3;
+  s.scene.ux = 1e-3;
+  s.scene.normal_steps = normal_steps;
+  s.scene.shear_steps = 1;
+  return s;
+}
+
 // The thesis's datasets as Table 5.1 and D.1-D.3 state them, and their rows found by value.
 TEST(RoughnessSweep, DatasetsAndThesisRows) {
   const RoughnessSweepSpec a = roughness_dataset("A");
@@ -231,17 +247,8 @@ TEST(RoughnessSweep, DatasetsAndThesisRows) {
 // Per value: the realizations' statistics, with CoV = std / mean (the thesis's s*); a real run
 // records the surface it made and fits the normal curve (>= 4 normal steps) for kappa.
 TEST(RoughnessSweep, RunsAndTable) {
-  RoughnessSweepSpec s = roughness_dataset("B");
-  s.values = {0.7};
-  s.realizations = 2;
-  s.base.nx = s.base.ny = 32;
-  s.base.dx = 1e-3;
+  RoughnessSweepSpec s = small_roughness_sweep("B", {0.7}, 2, 5);
   s.base.h0 = 2e-4;
-  s.scene.model = ContactModel::spectral;
-  s.scene.uz = 1e-3;
-  s.scene.ux = 1e-3;
-  s.scene.normal_steps = 5;
-  s.scene.shear_steps = 1;
   check_roughness_spec(s);
   std::vector<nlohmann::json> runs;
   for (int i = 0; i < roughness_run_count(s); ++i) runs.push_back(run_roughness_point(s, i, MPI_COMM_NULL, 1));
@@ -262,16 +269,7 @@ TEST(RoughnessSweep, RunsAndTable) {
 // A roughness sweep in the report: its own section and charts, its surfaces' (MPD, 100 mu) in the
 // skid chart, every named run group in the HDF5; a coverage-only reader refuses it.
 TEST(Report, RoughnessSweepSection) {
-  RoughnessSweepSpec s = roughness_dataset("A");
-  s.values = {1.72e-4, 3.05e-4};
-  s.realizations = 1;
-  s.base.nx = s.base.ny = 32;
-  s.base.dx = 1e-3;
-  s.scene.model = ContactModel::spectral;
-  s.scene.uz = 1e-3;
-  s.scene.ux = 1e-3;
-  s.scene.normal_steps = 4;
-  s.scene.shear_steps = 1;
+  const RoughnessSweepSpec s = small_roughness_sweep("A", {1.72e-4, 3.05e-4}, 1, 4);
   std::vector<nlohmann::json> runs;
   for (int i = 0; i < roughness_run_count(s); ++i) runs.push_back(run_roughness_point(s, i, MPI_COMM_NULL, 1));
   EXPECT_GT(runs[1]["mpd"].get<double>(), runs[0]["mpd"].get<double>());  // rougher: deeper texture
