@@ -5,7 +5,8 @@
 # the FEM on the full 300 x 300 default surface is a long job, see README "contact"); finally a
 # small coverage sweep on the default surface sampled coarsely (32 x 32 over the same 30 mm tile,
 # so that each FEM run takes seconds; contact forces along the obstacle's facet normals, see
-# README "sweeps") and its HTML report.
+# README "sweeps"), a roughness sweep over the thesis's dataset A on 16 x 16 surfaces (its
+# surfaces' MPDs give the skid-number chart its points), and the HTML report of both.
 # Outputs land in build/demo/.
 set -eu
 BIN=${BIN:-build/bin/wetroad}
@@ -28,9 +29,15 @@ OMP_NUM_THREADS=1 "$BIN" sweep-coverage --scene default --size 32 --dx 9.375e-4 
   --uz 1.5e-3 --ux 3e-3 --steps 2 --shear-steps 3 --tol 1e-3 --facet-normals --out "$OUT/sweep.h5" --csv "$OUT/sweep.csv" \
   --plots "$OUT/sweep-charts"
 echo
-"$BIN" report --sweep "$OUT/sweep.h5" -o "$OUT/report.html"
+rm -rf "$OUT/roughness.h5" "$OUT/roughness.h5.runs"
+OMP_NUM_THREADS=1 "$BIN" sweep-roughness --dataset A --size 16 --dx 1.875e-3 --realizations 1 --uz 1.5e-3 --ux 3e-3 \
+  --steps 4 --shear-steps 2 --tol 1e-3 --facet-normals --out "$OUT/roughness.h5" --csv "$OUT/roughness.csv" -q
+echo "roughness sweep (thesis dataset A on 16 x 16 surfaces): $OUT/roughness.csv"
+echo
+"$BIN" report --sweep "$OUT/sweep.h5" --sweep "$OUT/roughness.h5" -o "$OUT/report.html"
 echo
 echo "demo outputs in $OUT: surface.h5 (height map), analysis.json/.h5 (texture summary + PSD),"
 echo "  wet-30.h5 (30% water coverage), wet-limit.h5 (drained limit); 'wetroad analyze' reads the wet surfaces too;"
 echo "  contact.json/.h5/.vtu (shear test of a block on patch.h5: forces, mu, contact maps, deformed block)"
-echo "  sweep.h5/.csv, sweep-charts/ (friction against water coverage), report.html (open it in a browser)"
+echo "  sweep.h5/.csv, sweep-charts/ (friction against water coverage), roughness.h5/.csv (against h0),"
+echo "  report.html (both sweeps and skid numbers against MPD; open it in a browser)"
