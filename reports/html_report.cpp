@@ -201,7 +201,7 @@ std::string scene_html(const std::string& file, const nlohmann::json& sweep) {
                      "-connected; drained fills up to the drained limit, standing water beyond");
   const auto& pv = sweep["provenance"];
   row("made by", escape("wetroad " + pv.value("version", std::string("?")) + ", " + pv.value("command", std::string("")) +
-                        ", " + pv.value("created", std::string(""))));
+                        ", " + pv.value("created_utc", std::string(""))));
   row("wall time", fmt(num(pv["timings"]["total"]), "%.1f s") + " (this invocation), " +
                        fmt(num(pv["timings"]["ranks"]), "%.0f") + " rank(s)");
   o << "</table>\n";

@@ -22,8 +22,9 @@ nlohmann::json sample_statistics(const std::vector<double>& v) {
   m /= double(n);
   double ss = 0;
   for (double x : v) ss += (x - m) * (x - m);
-  const double sd = n > 1 ? std::sqrt(ss / double(n - 1)) : 0.0;
-  const double ci = n > 1 ? student_t95(int(n) - 1) * sd / std::sqrt(double(n)) : 0.0;
+  if (n == 1) return {{"mean", m}, {"std", nullptr}, {"ci95", nullptr}, {"cov", nullptr}, {"n", 1}};  // no spread
+  const double sd = std::sqrt(ss / double(n - 1));
+  const double ci = student_t95(int(n) - 1) * sd / std::sqrt(double(n));
   return {{"mean", m},
           {"std", sd},
           {"ci95", ci},

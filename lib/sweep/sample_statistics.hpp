@@ -10,7 +10,8 @@ namespace wr {
 double student_t95(int dof);
 
 // {mean, std (n - 1), ci95 (t95(n-1) std / sqrt n), cov (std / |mean|, the thesis's s*), n};
-// null entries for an empty sample, std and ci95 0 for one value.
+// null entries for an empty sample, and std, ci95, cov null for a single value (one
+// realization has no spread to report).
 nlohmann::json sample_statistics(const std::vector<double>& v);
 
 }  // namespace wr
