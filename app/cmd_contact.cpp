@@ -224,6 +224,9 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
   nlohmann::json j = {{"model", "analytic"}, {"rms_slope", req.rms_slope}, {"e_star", req.e_star},
                       {"kappa_persson", kappa_persson()}, {"kappa_bgt", kappa_bgt()}, {"wall_s", wall},
                       {"status", "ok"}, {"steps", rows}, {"validity", validity.json}, {"provenance", prov.to_json()}};
+  // The thesis's fits of the same curve (eq. 5.4 quartic, eq. 3.179 YAM): the parameters a
+  // Persson curve maps to, comparable with those of the FEM and spectral runs.
+  j["area_load_fit"] = area_load_fit_json(steps, talk);
   if (!c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
   return 0;
 }

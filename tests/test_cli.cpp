@@ -290,6 +290,22 @@ TEST_F(Cli, ContactSpectralModelReportsEveryStep) {
   EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
 }
 
+// The analytic model's curve through the thesis's quartic fit (eq. 5.4): Persson's
+// erf(sqrt 2 s) = sqrt(8/pi) s - (4 sqrt 2 / (3 sqrt pi)) s^3 + ..., so kappa and Omega are known.
+TEST_F(Cli, AnalyticModelReportsTheAreaLoadFits) {
+  const std::string s = path("s.h5"), j = path("an.json");
+  ASSERT_EQ(run("synth --size 32 --q0-ratio 2 --dx 1e-4 --h0 5e-6 --seed 4 -o " + s).code, 0);
+  const CliRun r = run("contact --model analytic --pressure 2e-3 --steps 6 --surface " + s + " --json " + j);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(j);
+  const auto js = nlohmann::json::parse(f);
+  const auto& q = js["area_load_fit"]["quartic"];
+  const double pi = 3.14159265358979323846;
+  EXPECT_NEAR(q["kappa"].get<double>(), std::sqrt(8 / pi), 1e-4);
+  EXPECT_NEAR(q["Omega"].get<double>(), -4 * std::sqrt(2.0) / (3 * std::sqrt(pi)), 1e-2);
+  EXPECT_TRUE(js["area_load_fit"].contains("yam"));
+}
+
 TEST_F(Cli, ContactAutoModelSaysWhichChecksDecided) {
   const std::string s = path("s.h5"), j = path("auto.json");
   ASSERT_EQ(run("synth --size 64 --q0-ratio 2 --dx 1e-4 --h0 5e-6 --seed 4 -o " + s).code, 0);  // gentle
