@@ -41,7 +41,7 @@ void summarise(SceneResult& r) {
   if (r.failed && r.message.empty()) r.message = "contact run failed";
 }
 
-SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
+SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms_slope, MPI_Comm comm) {
   ContactTestOptions o;
   o.shear = s.shear;
   o.uz = s.uz;
@@ -54,7 +54,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm c
   o.poisson = s.poisson;
   o.tolerance = s.tolerance;
   if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
-  o.rms_slope = rms_slope_finite_difference(obstacle, 1);
+  o.rms_slope = rms_slope;
   o.max_penetration = 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
   o.comm = comm;
   o.facet_normals = s.facet_normals;
@@ -92,10 +92,52 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   req.rms_slope = rms_slope_finite_difference(obstacle, 1);
   req.e_star = s.young / (1 - s.poisson * s.poisson);
   const auto checks = validity_checks(s.model, req);
-  SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, comm) : run_spectral(obstacle, s);
+  SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, req.rms_slope, comm) : run_spectral(obstacle, s);
   r.validity = validity_json(s.model, checks, "user");
   summarise(r);
   return r;
+}
+
+SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
+  try {
+    return run_contact_scene(obstacle, s, comm);
+  } catch (const std::exception& e) {
+    SceneResult r;
+    r.failed = true;
+    r.model = model_name(s.model);
+    r.message = e.what();
+    r.mu_peak = std::numeric_limits<double>::quiet_NaN();
+    return r;
+  }
+}
+
+nlohmann::json scene_result_json(const SceneResult& r) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const auto& st : r.steps)
+    steps.push_back({{"uz", st.uz},
+                     {"ux", st.ux},
+                     {"fz", st.fz},
+                     {"fx", st.fx},
+                     {"mu", st.mu},
+                     {"area_fraction", st.area_fraction},
+                     {"sigma_star", st.sigma_star},
+                     {"separation", st.separation},
+                     {"max_penetration", st.max_penetration},
+                     {"iterations", st.signorini_iterations},
+                     {"converged", st.converged},
+                     {"wall_s", st.wall_s}});
+  // NaN (a failed run's missing peak) is not JSON: null instead.
+  return {{"model", r.model},
+          {"mu_peak", std::isfinite(r.mu_peak) ? nlohmann::json(r.mu_peak) : nlohmann::json(nullptr)},
+          {"ux_peak", r.ux_peak},
+          {"area_at_peak", r.area_at_peak},
+          {"area_normal", r.area_normal},
+          {"fz_normal", r.fz_normal},
+          {"failed", r.failed},
+          {"message", r.message},
+          {"unknowns", r.unknowns},
+          {"steps", steps},
+          {"validity", r.validity}};
 }
 
 SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap& lattice) {

@@ -63,6 +63,13 @@ void check_contact_scene(const ContactScene& s);
 // `obstacle` periodic, no NaN. A step that does not converge ends the run: failed, with the
 // finished steps kept.
 SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
+// The same, for runs among many (sweeps): an exception becomes a failed result with its message.
+SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
+
+// The run as sweeps record it: {model, mu_peak (null without a peak), ux_peak, area_at_peak,
+// area_normal, fz_normal, failed, message, unknowns, steps [{uz, ux, fz, fx, mu, area_fraction,
+// sigma_star, separation, max_penetration, iterations, converged, wall_s}], validity}.
+nlohmann::json scene_result_json(const SceneResult& r);
 
 nlohmann::json contact_scene_json(const ContactScene& s);
 

@@ -20,24 +20,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-nlohmann::json step_record(const ContactStep& s) {
-  return {{"uz", s.uz},
-          {"ux", s.ux},
-          {"fz", s.fz},
-          {"fx", s.fx},
-          {"mu", s.mu},
-          {"area_fraction", s.area_fraction},
-          {"sigma_star", s.sigma_star},
-          {"separation", s.separation},
-          {"max_penetration", s.max_penetration},
-          {"iterations", s.signorini_iterations},
-          {"converged", s.converged},
-          {"wall_s", s.wall_s}};
-}
-
-// NaN (a failed run's missing peak) is not JSON: null instead.
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 }  // namespace
 
 void check_sweep_spec(const CoverageSweepSpec& s) {
@@ -164,28 +146,8 @@ nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key) {
   const auto t_contact = std::chrono::steady_clock::now();
   ContactScene scene = spec_.scene;
   scene.threads = threads_;
-  SceneResult c;
-  try {
-    c = run_contact_scene(wet, scene, comm_);
-  } catch (const std::exception& e) {
-    c.failed = true;
-    c.model = model_name(scene.model);
-    c.message = e.what();
-    c.mu_peak = std::numeric_limits<double>::quiet_NaN();
-  }
-  nlohmann::json steps = nlohmann::json::array();
-  for (const auto& st : c.steps) steps.push_back(step_record(st));
-  rec["contact"] = {{"model", c.model},
-                    {"mu_peak", number_or_null(c.mu_peak)},
-                    {"ux_peak", c.ux_peak},
-                    {"area_at_peak", c.area_at_peak},
-                    {"area_normal", c.area_normal},
-                    {"fz_normal", c.fz_normal},
-                    {"failed", c.failed},
-                    {"message", c.message},
-                    {"unknowns", c.unknowns},
-                    {"steps", steps},
-                    {"validity", c.validity}};
+  const SceneResult c = run_contact_scene_caught(wet, scene, comm_);
+  rec["contact"] = scene_result_json(c);
   const bool ok = !c.failed && std::isfinite(c.mu_peak);
   rec["status"] = ok ? "ok" : "failed";
   rec["message"] = ok ? "" : "contact: " + c.message;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <limits>
 #include <map>
 
 #include "lib/analytic/area_load_fit.hpp"
@@ -17,13 +16,9 @@
 namespace wr {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
-
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // The thesis's surfaces (Table 5.1): 300 x 300 over 3 cm, q0 = 5 qL, H = 0.7, h0 = 0.71 mm.
 SynthParams thesis_surface() {
@@ -127,36 +122,14 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
   const auto t1 = std::chrono::steady_clock::now();
   ContactScene scene = s.scene;
   scene.threads = threads;
-  SceneResult c;
-  try {
-    c = run_contact_scene(m, scene, comm);
-  } catch (const std::exception& e) {
-    c.failed = true;
-    c.model = model_name(scene.model);
-    c.message = e.what();
-    c.mu_peak = kNaN;
-  }
-  nlohmann::json steps = nlohmann::json::array();
-  std::vector<double> sig, area;
-  for (const auto& st : c.steps) {
-    steps.push_back({{"uz", st.uz}, {"ux", st.ux}, {"fz", st.fz}, {"fx", st.fx}, {"mu", st.mu},
-                     {"area_fraction", st.area_fraction}, {"sigma_star", st.sigma_star}, {"converged", st.converged}});
+  const SceneResult c = run_contact_scene_caught(m, scene, comm);
+  std::vector<double> sig, area;  // the normal curve: converged steps before the shear
+  for (const auto& st : c.steps)
     if (st.ux == 0 && st.converged && st.sigma_star > 0) {
       sig.push_back(st.sigma_star);
       area.push_back(st.area_fraction);
     }
-  }
-  rec["contact"] = {{"model", c.model},
-                    {"mu_peak", number_or_null(c.mu_peak)},
-                    {"ux_peak", c.ux_peak},
-                    {"area_at_peak", c.area_at_peak},
-                    {"area_normal", c.area_normal},
-                    {"fz_normal", c.fz_normal},
-                    {"failed", c.failed},
-                    {"message", c.message},
-                    {"unknowns", c.unknowns},
-                    {"steps", steps},
-                    {"validity", c.validity}};
+  rec["contact"] = scene_result_json(c);
   rec["normal_curve"] = {{"sigma_star", sig}, {"area", area}};
   rec["quartic"] = nullptr;
   if (sig.size() >= 4) {
