@@ -42,6 +42,11 @@ struct Provenance {
 
 std::string utc_now_iso8601();
 
+// Wall-clock seconds since t0 (steady clock).
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // Peak resident set size of this process so far, bytes.
 std::size_t peak_rss_bytes();
 

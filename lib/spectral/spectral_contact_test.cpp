@@ -1,3 +1,4 @@
+#include "lib/core/provenance.hpp"
 #include "lib/spectral/spectral_contact_test.hpp"
 
 #include <chrono>
@@ -11,10 +12,6 @@ namespace wr {
 namespace {
 
 using clock_type = std::chrono::steady_clock;
-double seconds_since(clock_type::time_point t0) {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
-}
-
 // Periodic bilinear interpolation of a grid field at (x, y) in grid units.
 double sample(const std::vector<double>& f, std::size_t nx, std::size_t ny, double x, double y) {
   const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;

@@ -1,3 +1,4 @@
+#include "lib/core/provenance.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
 
 #include <algorithm>
@@ -14,14 +15,6 @@
 #include "roads/surface_import.hpp"
 
 namespace wr {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
-
 void check_sweep_spec(const CoverageSweepSpec& s) {
   if (s.coverages.empty()) throw InputError("--coverages", "give at least one coverage");
   for (std::size_t i = 0; i < s.coverages.size(); ++i) {

@@ -1,3 +1,4 @@
+#include "lib/core/provenance.hpp"
 #include "lib/sweep/roughness_sweep.hpp"
 
 #include <chrono>
@@ -15,10 +16,6 @@
 
 namespace wr {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // The thesis's surfaces (Table 5.1): 300 x 300 over 3 cm, q0 = 5 qL, H = 0.7, h0 = 0.71 mm.
 SynthParams thesis_surface() {
