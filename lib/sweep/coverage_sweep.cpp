@@ -15,6 +15,7 @@
 #include "roads/surface_import.hpp"
 
 namespace wr {
+
 void check_sweep_spec(const CoverageSweepSpec& s) {
   if (s.coverages.empty()) throw InputError("--coverages", "give at least one coverage");
   for (std::size_t i = 0; i < s.coverages.size(); ++i) {
