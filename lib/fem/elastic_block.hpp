@@ -50,11 +50,7 @@ struct ContactLoad {
   double tolerance = 1e-5;       // relative change of the contact-face displacement
   int max_outer_iterations = 300;
   double ksp_rtol = 1e-7;         // CG tolerance of the final linearisations
-  // Early linearisations are solved loosely: CG rtol = inexact_factor x the last relative change
-  // (clamped to [ksp_rtol, 1e-3]). 0.1 needs 40 % fewer CG iterations than 0.01 for the same
-  // Signorini iteration count (a 50x50 rough scene at refine 2); false: every solve at ksp_rtol.
-  bool inexact = true;
-  double inexact_factor = 0.1;
+  bool inexact = true;            // early linearisations solved loosely (rtol ~ 0.01 x the change)
   int max_active_set_iterations = 60;
   // PDAS iterations allowed in a Signorini iteration before the last (the active set then goes
   // on settling across outer iterations; 35 % faster per iteration). Off by default: on a
