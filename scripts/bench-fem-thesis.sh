@@ -4,6 +4,7 @@
 # Problem A (uz 9 mm in 2 steps) then Problem B (ux in shear steps) on 2 ranks; wall time and
 # peak memory per rank from /usr/bin/time, per-step times and forces from --json.
 # Usage: scripts/bench-fem-thesis.sh [WETROAD] [WORKDIR] [UX_M] [SHEAR_STEPS] [TOL]
+# SHEAR_STEPS 0: Problem A alone.
 # Long: tens of minutes on 2 cores. Not part of make test.
 set -eu
 BIN=${1:-build/bin/wetroad}
@@ -17,9 +18,11 @@ MPIRUN="mpirun -np 2"
 [ "$(id -u)" -eq 0 ] && MPIRUN="mpirun --allow-run-as-root -np 2"
 [ -f "$W/A_3.05e-4.h5" ] ||
   "$BIN" synth --size 300 --dx 1e-4 --h0 3.05e-4 --hurst 0.7 --q0-ratio 5 --seed 1 -o "$W/A_3.05e-4.h5" -q
+PROBLEM="--problem shear --ux $UX --shear-steps $SHEAR_STEPS"
+[ "$SHEAR_STEPS" -eq 0 ] && PROBLEM="--problem normal"
 # shellcheck disable=SC2086
 /usr/bin/time -f "wall %e s, peak memory per rank %M KB" $MPIRUN "$BIN" contact --surface "$W/A_3.05e-4.h5" \
-  --problem shear --uz 9e-3 --steps 2 --ux "$UX" --shear-steps "$SHEAR_STEPS" --refine 2 --tol "$TOL" \
+  $PROBLEM --uz 9e-3 --steps 2 --refine 2 --tol "$TOL" \
   --json "$W/shear.json" 2>&1 | tee "$W/shear.log"
 python3 - "$W/shear.json" <<'PY'
 import json, sys
