@@ -14,6 +14,7 @@
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/contact/contact_scene.hpp"
+#include "lib/contact/friction_convergence.hpp"
 #include "lib/contact/model_ladder.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/core/errors.hpp"
@@ -61,7 +62,10 @@ nlohmann::json step_json(const ContactStep& s) {
           {"wall_s", s.wall_s},
           {"converged", s.converged},
           {"message", s.message},
-          {"residual_history", s.history}};
+          {"residual_history", s.history},
+          // How much mu still moved at the end (friction_convergence.hpp); null where not measured.
+          {"mu_drift", std::isfinite(s.mu_drift) ? nlohmann::json(s.mu_drift) : nlohmann::json(nullptr)},
+          {"mu_history", s.mu_history}};
 }
 
 // --thickness: metres or "inf" (half-space); empty gives `fallback`.
@@ -400,13 +404,18 @@ int run_contact(ContactCli c) {
   });
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& st : r.steps) steps.push_back(step_json(st));
+  if (c.opt.shear && c.opt.follow_geometry) {  // known only now: did the friction settle?
+    validity.checks.push_back(friction_convergence_check(r.steps));
+    validity.json = validity_json(model, validity.checks, validity.json["chosen_by"].get<std::string>());
+    if (rank == 0) warn_if_invalid(model, {validity.checks.back()});
+  }
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
+                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
                      {"follow_geometry", c.opt.follow_geometry}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
@@ -495,6 +504,9 @@ Command add_contact(CLI::App& root) {
   s->add_option("--E", c->opt.young, "Young's modulus, Pa (forces scale with it)")->capture_default_str();
   s->add_option("--nu", c->opt.poisson, "Poisson's ratio")->capture_default_str();
   s->add_option("--damping", c->opt.damping, "damping alpha_c of the geometry iteration (fem Signorini, spectral shear)")->capture_default_str();
+  s->add_option("--extrapolate", c->opt.extrapolate_every,
+                "fem: Aitken jump along the slow mode (the face's creep) every N Signorini iterations; 0: off")
+      ->capture_default_str();
   s->add_option("--max-penetration", c->opt.max_penetration,
                  "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "
                  "negative: no check)");

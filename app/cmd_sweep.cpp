@@ -48,6 +48,9 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_option("--tol", c.scene.tolerance, "relative change per geometry (Signorini) iteration")->capture_default_str();
   s.add_option("--spectral-tol", c.scene.spectral_tolerance, "spectral normal solver tolerance")->capture_default_str();
   s.add_option("--max-iterations", c.scene.max_iterations, "per step (0: the model's default)");
+  s.add_option("--extrapolate", c.scene.extrapolate_every,
+               "fem: slow-mode jump every N Signorini iterations (as `contact --extrapolate`; 0: off)")
+      ->capture_default_str();
   s.add_flag("--facet-normals", c.scene.facet_normals,
              "fem: constrain contact nodes along the obstacle facet's normal (as `contact --facet-normals`)");
   s.add_option("--facet-band", c.scene.facet_band, "with --facet-normals: smooth band at facet edges (as `contact`)");

@@ -224,6 +224,14 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   ASSERT_TRUE(js.contains("peak"));  // one shear step: it is the peak
   EXPECT_EQ(js["peak"]["step"].get<int>(), 2);
   EXPECT_DOUBLE_EQ(js["peak"]["mu"].get<double>(), js["steps"][1]["mu"].get<double>());
+  // Whether mu settled is measured and judged: the shear step's drift and mu per Signorini
+  // iteration, and the "friction converged" check beside the others.
+  EXPECT_TRUE(js["steps"][1]["mu_drift"].is_number());
+  EXPECT_EQ(js["steps"][1]["mu_history"].size(), js["steps"][1]["signorini_iterations"].get<std::size_t>());
+  EXPECT_TRUE(js["steps"][0]["mu_drift"].is_null());  // a normal step's mu is not judged
+  bool judged = false;
+  for (const auto& v : js["validity"]["checks"]) judged |= v["check"] == "friction converged";
+  EXPECT_TRUE(judged) << js["validity"].dump();
   // Failure is never a number: an iteration cap that cannot be met ends with exit code 3, the
   // residual history, and the finished steps labelled.
   r = run("contact --surface " + s + " --problem normal --uz 1e-4 --steps 2 --refine 1 --tol 1e-30 --max-iterations 3 --json " + j);

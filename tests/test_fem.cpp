@@ -7,6 +7,7 @@
 #include "lib/analytic/hertz.hpp"
 #include "lib/fem/elastic_block.hpp"
 #include "lib/fem/petsc_session.hpp"
+#include "lib/fem/slow_mode_extrapolation.hpp"
 
 namespace wr {
 namespace {
@@ -106,6 +107,9 @@ TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
       const ContactSolution s = block.solve(load);
       ASSERT_TRUE(s.converged) << s.message;
       const double mu = s.fx / s.fz;
+      // Every Signorini iteration leaves its friction ratio (friction_convergence.hpp).
+      ASSERT_EQ(s.mu_history.size(), std::size_t(s.outer_iterations));
+      ASSERT_EQ(s.damping_history.size(), std::size_t(s.outer_iterations));
       if (follow) {
         // Nodes stay on the obstacle up to the linearisation error left at the stopping
         // tolerance (relative change 1e-5): a few times 1e-5 of the press.
@@ -121,6 +125,44 @@ TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
   }
   // Mirror images within the discretisation's asymmetry (the cell diagonals are not mirrored).
   EXPECT_NEAR(mu_follow[0], -mu_follow[1], 0.1 * mu_follow[0]);
+}
+
+// Slow-mode extrapolation on a linear fixed-point iteration whose answer is known: the damped
+// map u <- u + alpha (M u + b - u) with M = diag(0.99, 0.5, 0.2, ...) converges to
+// u* = (I - M)^-1 b, its slow mode at 1 - alpha (1 - 0.99) per iteration. The jumps must reach
+// the same u* in far fewer iterations.
+TEST(Fem, SlowModeExtrapolationReachesTheSameFixedPointSooner) {
+  const PetscInt n = 40;
+  const double alpha = 0.8;
+  const auto eigen = [](PetscInt i) { return i == 0 ? 0.99 : 0.5 / double(1 + i % 5); };
+  const auto iterations_to_converge = [&](int every, double* error) {
+    Vec u;
+    VecCreateSeq(PETSC_COMM_SELF, n, &u);
+    VecSet(u, 0.0);
+    SlowModeExtrapolation x(u, every);
+    int k = 0;
+    for (; k < 5000; ++k) {
+      PetscScalar* a;
+      VecGetArray(u, &a);
+      double err = 0;
+      for (PetscInt i = 0; i < n; ++i) {
+        const double b = 1.0 + 0.1 * double(i), target = eigen(i) * a[i] + b;
+        a[i] += alpha * (target - a[i]);
+        err = std::max(err, std::abs(a[i] - b / (1 - eigen(i))));
+      }
+      VecRestoreArray(u, &a);
+      *error = err;
+      if (err < 1e-8) break;
+      x.after_iteration(u);
+    }
+    VecDestroy(&u);
+    return k;
+  };
+  double err_plain = 0, err_fast = 0;
+  const int plain = iterations_to_converge(0, &err_plain), fast = iterations_to_converge(5, &err_fast);
+  EXPECT_LT(err_plain, 1e-8);
+  EXPECT_LT(err_fast, 1e-8);
+  EXPECT_LT(fast, plain / 3) << "plain " << plain << ", extrapolated " << fast;
 }
 
 // Hertz: a paraboloid (R = 10 cm) pressed 60 um into a 2 cm block; contact radius a ~ 2.5 mm,

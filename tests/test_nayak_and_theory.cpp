@@ -7,6 +7,7 @@
 
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
+#include "lib/contact/friction_convergence.hpp"
 #include "lib/contact/model_ladder.hpp"
 #include "lib/analytic/nayak_summits.hpp"
 
@@ -103,6 +104,56 @@ TEST(ModelLadder, AutoPicksTheCheapestValidModel) {
   EXPECT_FALSE(all_passed(c.considered.back().second));
   r.refine = 2;
   EXPECT_TRUE(all_passed(validity_checks(ContactModel::fem, r)));
+}
+
+// The estimated remaining change of mu (friction_convergence.hpp) on made-up histories: exact
+// for geometric convergence, large for a steady creep whatever the damping, 0 when settled.
+TEST(FrictionDrift, EstimatesTheChangeOfMuStillToCome) {
+  const auto series = [](int n, auto f) {
+    std::vector<double> v;
+    for (int k = 0; k < n; ++k) v.push_back(f(k));
+    return v;
+  };
+  const auto alpha = [&](int n, double a) { return series(n, [a](int) { return a; }); };
+  EXPECT_DOUBLE_EQ(friction_drift(series(20, [](int) { return 0.2; }), alpha(20, 0.8), 0.8), 0.0);
+  // Geometric approach to 0.05 (ratio 0.9 per iteration): the estimate is the true remaining change.
+  const auto geometric = series(30, [](int k) { return 0.05 + 0.1 * std::pow(0.9, k); });
+  EXPECT_NEAR(friction_drift(geometric, alpha(30, 0.8), 0.8) * geometric.back(), geometric.back() - 0.05, 1e-12);
+  // Steady creep of 1e-3 per iteration: r = 1, capped at 0.95, i.e. 19 half-windows of 5e-3.
+  const auto creep = series(30, [](int k) { return 0.2 - 1e-3 * k; });
+  EXPECT_NEAR(friction_drift(creep, alpha(30, 0.8), 0.8), 19 * 5e-3 / creep.back(), 1e-9);
+  // The same creep slowed 8x by a damping cut to 0.1 is just as far from settled.
+  const auto slowed = series(30, [](int k) { return 0.2 - 1.25e-4 * k; });
+  EXPECT_NEAR(friction_drift(slowed, alpha(30, 0.1), 0.8), 19 * 5e-3 / slowed.back(), 1e-9);
+  // Short histories use shorter half-windows; two iterations are too few to say.
+  EXPECT_NEAR(friction_drift({0.2, 0.19, 0.18}, alpha(3, 0.8), 0.8), 19 * 0.01 / 0.18, 1e-9);
+  EXPECT_TRUE(std::isnan(friction_drift({0.2, 0.19}, alpha(2, 0.8), 0.8)));
+  // A mu of about 0 (flat or symmetric scenes) is judged in absolute terms, against 1e-3.
+  EXPECT_NEAR(friction_drift({1e-6, 2e-6, 2.5e-6}, alpha(3, 0.8), 0.8), 5e-7 * 0.5 / 0.5 / 1e-3, 1e-12);
+}
+
+TEST(FrictionDrift, CheckFlagsAShearStepStillSliding) {
+  std::vector<ContactStep> steps(3);
+  steps[0].ux = 0;  // normal load: its Fx is a by-product, never judged
+  steps[0].mu_drift = 0.9;
+  steps[0].converged = true;
+  steps[1].ux = 1e-3;
+  steps[1].mu_drift = 0.005;
+  steps[1].converged = true;
+  steps[2].ux = 2e-3;
+  steps[2].mu_drift = 0.3;
+  steps[2].converged = true;
+  ValidityCheck c = friction_convergence_check(steps);
+  EXPECT_EQ(c.name, "friction converged");
+  EXPECT_FALSE(c.passed);
+  EXPECT_FALSE(c.decides_model);  // a flag: no other model answers friction
+  EXPECT_NE(c.detail.find("step 3"), std::string::npos) << c.detail;
+  steps[2].mu_drift = 0.01;
+  EXPECT_TRUE(friction_convergence_check(steps).passed);
+  steps.resize(1);
+  c = friction_convergence_check(steps);
+  EXPECT_TRUE(c.passed);
+  EXPECT_NE(c.detail.find("no shear step"), std::string::npos) << c.detail;
 }
 
 }  // namespace

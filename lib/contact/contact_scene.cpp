@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lib/contact/friction_convergence.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/fem/contact_test.hpp"
@@ -53,6 +54,8 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms
   o.young = s.young;
   o.poisson = s.poisson;
   o.tolerance = s.tolerance;
+  o.damping = s.damping;
+  o.extrapolate_every = s.extrapolate_every;
   if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
   o.rms_slope = rms_slope;
   o.max_penetration = 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
@@ -91,8 +94,9 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   req.refine = s.model == ContactModel::fem ? s.refine : 0;
   req.rms_slope = rms_slope_finite_difference(obstacle, 1);
   req.e_star = s.young / (1 - s.poisson * s.poisson);
-  const auto checks = validity_checks(s.model, req);
+  auto checks = validity_checks(s.model, req);
   SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, req.rms_slope, comm) : run_spectral(obstacle, s);
+  if (s.model == ContactModel::fem && s.shear) checks.push_back(friction_convergence_check(r.steps));
   r.validity = validity_json(s.model, checks, "user");
   summarise(r);
   return r;
@@ -124,6 +128,7 @@ nlohmann::json scene_result_json(const SceneResult& r) {
                      {"separation", st.separation},
                      {"max_penetration", st.max_penetration},
                      {"iterations", st.signorini_iterations},
+                     {"mu_drift", std::isfinite(st.mu_drift) ? nlohmann::json(st.mu_drift) : nlohmann::json(nullptr)},
                      {"converged", st.converged},
                      {"wall_s", st.wall_s}});
   // NaN (a failed run's missing peak) is not JSON: null instead.
@@ -175,6 +180,7 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"thickness", std::isfinite(s.thickness) ? nlohmann::json(s.thickness) : nlohmann::json("inf")},
           {"pressure", s.pressure},
           {"damping", s.damping},
+          {"extrapolate_every", s.extrapolate_every},
           {"tolerance", s.tolerance},
           {"spectral_tolerance", s.spectral_tolerance},
           {"max_iterations", s.max_iterations},

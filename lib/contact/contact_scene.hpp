@@ -32,6 +32,7 @@ struct ContactScene {
   double thickness = 0;       // m, spectral layer (0: the block height; +inf: the half-space)
   double pressure = 0;        // Pa, spectral load control instead of uz (normal contact only)
   double damping = 0.8;       // of the geometry (Signorini) iteration
+  int extrapolate_every = 5;  // FEM: slow-mode jumps every this many Signorini iterations (0: off)
   double tolerance = 1e-4;    // relative change per geometry (Signorini) iteration
   double spectral_tolerance = 1e-8;  // Polonsky-Keer error
   int max_iterations = 0;     // per step (0: the model's default)

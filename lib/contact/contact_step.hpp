@@ -2,6 +2,7 @@
 // One load step of a contact experiment (Problem A or B, thesis sec. 4.2.2), whichever model
 // computed it (FEM: lib/fem/contact_test.hpp; spectral: lib/spectral/spectral_contact_test.hpp).
 // SI units: m, N, m^2; forces for the stated E.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ struct ContactStep {
   bool converged = false;
   std::string message;
   std::vector<double> history;  // the solver's convergence measure per iteration
+  // FEM: mu of each Signorini iteration's linearised solution, and how much it still changed
+  // at the end (lib/contact/friction_convergence.hpp; NaN where not measured).
+  std::vector<double> mu_history;
+  double mu_drift = std::numeric_limits<double>::quiet_NaN();
   // Contact-face maps when requested, row-major (rows = y): FEM (ny+1) x (nx+1) face nodes,
   // spectral ny x nx grid points. Pressure Pa, gap m, status 1 in contact / 0 free.
   std::vector<double> face_pressure, face_gap, face_status;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "lib/contact/friction_convergence.hpp"
 #include "lib/core/errors.hpp"
 
 namespace wr {
@@ -59,6 +60,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.obstacle = &ob;
   load.follow_geometry = opt.follow_geometry;
   load.damping = opt.damping;
+  load.extrapolate_every = opt.extrapolate_every;
   load.tolerance = opt.tolerance;
   load.ksp_rtol = opt.ksp_rtol;
   load.max_outer_iterations = opt.max_iterations;
@@ -107,6 +109,9 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       st.message = buf;
     }
     st.history = std::move(s.history);
+    // Friction is only asked of shear steps; a normal step's Fx is a by-product.
+    if (load.ux != 0 && opt.follow_geometry) st.mu_drift = friction_drift(s.mu_history, s.damping_history, opt.damping);
+    st.mu_history = std::move(s.mu_history);
     st.face_pressure = std::move(s.face_pressure);  // maps can be large: move, do not copy
     st.face_gap = std::move(s.face_gap);
     st.face_status = std::move(s.face_status);

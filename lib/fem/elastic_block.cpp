@@ -10,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/io/vtu_writer.hpp"
 
 namespace wr {
@@ -454,6 +455,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   check(VecDuplicate(m.u, &r), "VecDuplicate");
   check(VecDuplicate(m.u, &diag), "VecDuplicate");
   check(VecDuplicate(m.u, &ustar), "VecDuplicate");
+  SlowModeExtrapolation extrapolation(m.u, load.follow_geometry && load.obstacle ? load.extrapolate_every : 0);
   KSP ksp;
   check(KSPCreate(m.comm, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
@@ -469,16 +471,18 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   set_default_option("-mg_levels_ksp_chebyshev_esteig", "0,0.1,0,1.2");
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
 
-  // Reaction on the top face along component c (z counted positive in compression), for traces.
-  auto top_force = [&](Vec v, int c) {
+  // Reactions {Fx, Fz} on the top face of the displacement v (Fz counted positive in
+  // compression): every iteration's friction ratio is kept (friction_convergence.hpp).
+  auto top_forces = [&](Vec v) {
     check(MatMult(m.K, v, r), "MatMult");
     const PetscScalar* ra;
     VecGetArrayRead(r, &ra);
-    double f = 0, fg = 0;
-    for (PetscInt row : top_rows[c]) f += ra[row - rstart];
+    double f[2] = {0, 0}, fg[2];
+    for (PetscInt row : top_rows[0]) f[0] += ra[row - rstart];
+    for (PetscInt row : top_rows[2]) f[1] -= ra[row - rstart];
     VecRestoreArrayRead(r, &ra);
-    MPI_Allreduce(&f, &fg, 1, MPI_DOUBLE, MPI_SUM, m.comm);
-    return c == 2 ? -fg : fg;
+    MPI_Allreduce(f, fg, 2, MPI_DOUBLE, MPI_SUM, m.comm);
+    return std::array<double, 2>{fg[0], fg[1]};
   };
   const double reach = std::max(m.spec.mesh.lz, 1e-12);  // rays look this far for the obstacle
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
@@ -734,7 +738,10 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     VecRestoreArray(m.u, &uc);
     check(VecScale(m.u, 1 - alpha), "VecScale");
     check(VecAXPY(m.u, alpha, ustar), "VecAXPY");
-    const double trace_fz = load.trace ? top_force(ustar, 2) : 0, trace_fx = load.trace ? top_force(ustar, 0) : 0;
+    const auto forces = top_forces(ustar);
+    const double trace_fx = forces[0], trace_fz = forces[1];
+    out.mu_history.push_back(trace_fz > 0 ? trace_fx / trace_fz : 0.0);
+    out.damping_history.push_back(alpha);
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
                    "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  [%.1f s]\n",
@@ -747,6 +754,11 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
                    outer + 1, step_change, load.tolerance, alpha, out.contact_nodes, last_progress - t_solve_start);
     }
     out.final_damping = alpha;
+    if (const double jump = extrapolation.after_iteration(m.u); jump > 0) {
+      out.extrapolations = extrapolation.jumps();
+      if (load.trace && m.rank == 0) std::fprintf(stderr, "    slow-mode extrapolation: factor %.2f\n", jump);
+      continue;  // the change measured before the jump says nothing about the new iterate
+    }
     if (final_pass && step_change > load.tolerance) {
       // Not confirmed: the loose solves were too loose to see the change that is left. Go on
       // loosely, ten times tighter.

@@ -58,6 +58,9 @@ struct ContactLoad {
   // mirror images then differ by 25 %).
   int early_active_set_iterations = 60;
   bool reuse_preconditioner = true;  // keep one AMG hierarchy per load step (rebuilt if CG slows)
+  // Aitken jumps along the slow mode every this many Signorini iterations (0: off;
+  // lib/fem/slow_mode_extrapolation.hpp): half the iterations on rough obstacles.
+  int extrapolate_every = 5;
   bool face_maps = false;            // gather the contact-face maps below on rank 0
   bool trace = false;                // rank 0 prints one line per Signorini iteration (stderr)
   double progress_every_s = 0;       // > 0: rank 0 prints a progress line at most this often (stderr)
@@ -72,9 +75,12 @@ struct ContactSolution {
   int active_set_iterations = 0;  // PDAS iterations, summed
   int linear_iterations = 0;      // CG iterations, summed
   int preconditioner_rebuilds = 0;  // AMG hierarchies rebuilt after a failed solve with a kept one
+  int extrapolations = 0;           // slow-mode jumps taken (slow_mode_extrapolation.hpp)
   bool converged = false;
   std::string message;
   std::vector<double> history;    // relative change of the face displacement per outer iteration
+  std::vector<double> mu_history;       // Fx / Fz of each outer iteration's linearised solution
+  std::vector<double> damping_history;  // alpha_c applied after each outer iteration
   double final_damping = 0;       // alpha_c at the end (halved while the iteration stagnated)
   double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, summed over the iterations
   // Contact-face maps, (nx+1) x (ny+1) row-major (rows = y), on rank 0 when requested:

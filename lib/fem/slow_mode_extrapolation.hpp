@@ -1,0 +1,47 @@
+#pragma once
+// Vector Aitken extrapolation of the Signorini (geometry) iteration along its slow mode.
+//
+// Why: with linearised constraints, Algorithm 1 (thesis sec. 4.2) converges linearly, and on
+// rough obstacles one mode is slow: the contact face creeping along the obstacle, a little
+// further every iteration (contraction 0.9-0.99 per iteration), while the fast modes die out in
+// a few. Over a block of `every` iterations the iterate then moves along an almost fixed
+// direction d by a factor q < 1 less each block; the rest of the geometric series,
+// d (q + q^2 + ...) = d q / (1 - q), is added in one jump (the Aitken delta-squared step on the
+// block changes). The next iteration re-linearises at the extrapolated configuration, so a jump
+// that overshoots costs iterations, never correctness: convergence is still judged by the
+// iteration's own criterion.
+//
+// Measured (50 x 50 obstacle, h0 0.1 mm, refine 2, uz 1.5 mm, tol 1e-4, 2 ranks): 103 Signorini
+// iterations and 1744 CG iterations, against 214 and 3593 without.
+//
+// A jump is taken only when two consecutive block changes point the same way (cosine > 0.9)
+// and shrink (q < 0.99); its factor is capped at kMaxFactor. After a jump the next two blocks
+// are measured afresh.
+#include <petscvec.h>
+
+namespace wr {
+
+class SlowModeExtrapolation {
+ public:
+  static constexpr double kMinCosine = 0.9;
+  static constexpr double kMaxRatio = 0.99;
+  static constexpr double kMaxFactor = 20.0;
+
+  // `like`: a vector of the iterate's layout; `every` >= 2 iterations per block (0 or 1: off).
+  SlowModeExtrapolation(Vec like, int every);
+  ~SlowModeExtrapolation();
+  SlowModeExtrapolation(const SlowModeExtrapolation&) = delete;
+  SlowModeExtrapolation& operator=(const SlowModeExtrapolation&) = delete;
+
+  // Call once after every iteration with its new iterate `u` (collective). At the end of a
+  // block it may move `u` in place; returns the factor of that jump, 0 when none.
+  double after_iteration(Vec u);
+  int jumps() const { return jumps_; }
+
+ private:
+  int every_ = 0, count_ = 0, jumps_ = 0;
+  bool have_previous_ = false;
+  Vec start_ = nullptr, previous_ = nullptr, change_ = nullptr;
+};
+
+}  // namespace wr
