@@ -505,7 +505,8 @@ Command add_contact(CLI::App& root) {
   s->add_option("--nu", c->opt.poisson, "Poisson's ratio")->capture_default_str();
   s->add_option("--damping", c->opt.damping, "damping alpha_c of the geometry iteration (fem Signorini, spectral shear)")->capture_default_str();
   s->add_option("--extrapolate", c->opt.extrapolate_every,
-                "fem: Aitken jump along the slow mode (the face's creep) every N Signorini iterations; 0: off")
+                "fem: Aitken jump along the slow mode (the face's creep) every N Signorini iterations; 0: off; "
+                "not with --facet-normals (their iteration is not smooth)")
       ->capture_default_str();
   s->add_option("--max-penetration", c->opt.max_penetration,
                  "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "

@@ -455,7 +455,11 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   check(VecDuplicate(m.u, &r), "VecDuplicate");
   check(VecDuplicate(m.u, &diag), "VecDuplicate");
   check(VecDuplicate(m.u, &ustar), "VecDuplicate");
-  SlowModeExtrapolation extrapolation(m.u, load.follow_geometry && load.obstacle ? load.extrapolate_every : 0);
+  // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
+  // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led
+  // a shear step to a state 1.4x deeper in the obstacle than allowed. Blend normals only.
+  const bool smooth_map = load.follow_geometry && load.obstacle && !load.facet_normals;
+  SlowModeExtrapolation extrapolation(m.u, smooth_map ? load.extrapolate_every : 0);
   KSP ksp;
   check(KSPCreate(m.comm, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");

@@ -59,7 +59,8 @@ struct ContactLoad {
   int early_active_set_iterations = 60;
   bool reuse_preconditioner = true;  // keep one AMG hierarchy per load step (rebuilt if CG slows)
   // Aitken jumps along the slow mode every this many Signorini iterations (0: off;
-  // lib/fem/slow_mode_extrapolation.hpp): half the iterations on rough obstacles.
+  // lib/fem/slow_mode_extrapolation.hpp): half the iterations on rough obstacles. Not with
+  // facet_normals (a discontinuous map, see elastic_block.cpp).
   int extrapolate_every = 5;
   bool face_maps = false;            // gather the contact-face maps below on rank 0
   bool trace = false;                // rank 0 prints one line per Signorini iteration (stderr)
