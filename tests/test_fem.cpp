@@ -127,6 +127,35 @@ TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
   EXPECT_NEAR(mu_follow[0], -mu_follow[1], 0.1 * mu_follow[0]);
 }
 
+// A loose tolerance can be met while a node still sits inside the obstacle; with a penetration
+// limit the iteration goes on (with tighter loose solves) instead of stopping there.
+TEST(Fem, PenetrationLimitKeepsALooseIterationGoing) {
+  BlockSpec b;
+  b.mesh.nx = 32;
+  b.mesh.ny = 4;
+  b.mesh.min_cells = 2;
+  const std::size_t n = 64;
+  const double dx = 0.03 / n;
+  HeightMap w(n, n, dx, dx);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) w(i, j) = 0.2 * dx * double(i % 16);  // the ratchet above
+  const PeriodicObstacle ob(w);
+  ContactLoad load;
+  load.obstacle = &ob;
+  load.uz = 1e-3;
+  load.tolerance = 0.05;
+  ElasticBlock loose(b);
+  const ContactSolution a = loose.solve(load);
+  ASSERT_TRUE(a.converged) << a.message;
+  ASSERT_GT(a.max_penetration, 0.0);
+  load.max_penetration = 0.5 * a.max_penetration;
+  ElasticBlock limited(b);
+  const ContactSolution c = limited.solve(load);
+  ASSERT_TRUE(c.converged) << c.message;
+  EXPECT_GT(c.outer_iterations, a.outer_iterations);
+  EXPECT_LT(c.max_penetration, a.max_penetration);
+}
+
 // Slow-mode extrapolation on a linear fixed-point iteration whose answer is known: the damped
 // map u <- u + alpha (M u + b - u) with M = diag(0.99, 0.5, 0.2, ...) converges to
 // u* = (I - M)^-1 b, its slow mode at 1 - alpha (1 - 0.99) per iteration. The jumps must reach

@@ -62,6 +62,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.damping = opt.damping;
   load.extrapolate_every = opt.extrapolate_every;
   load.tolerance = opt.tolerance;
+  load.max_penetration = opt.max_penetration;
   load.ksp_rtol = opt.ksp_rtol;
   load.max_outer_iterations = opt.max_iterations;
   load.face_maps = opt.face_maps;

@@ -48,6 +48,10 @@ struct ContactLoad {
   bool facet_normals = false;     // constraint normal: the hit triangle's (true) or the smooth blend
   double facet_band = 0;          // > 0: facet normals blended into the smooth ones near edges
   double tolerance = 1e-5;       // relative change of the contact-face displacement
+  // m; > 0: a step that meets the tolerance while a face node is deeper in the obstacle goes on
+  // iterating, with tighter loose solves, up to kPenetrationRetries times (the caller's
+  // penetration check then judges what is left).
+  double max_penetration = 0;
   int max_outer_iterations = 300;
   double ksp_rtol = 1e-7;         // CG tolerance of the final linearisations
   bool inexact = true;            // early linearisations solved loosely (rtol ~ 0.01 x the change)
