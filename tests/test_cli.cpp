@@ -245,6 +245,9 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   r = run("contact --surface " + s + " --problem normal --uz 1e-4 --steps 1 --refine 1 --tol 0.5 --max-penetration 1e-15 --json " + j);
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("penetration"), std::string::npos) << r.err;
+  r = run("contact --surface " + s + " --problem normal --uz 1e-4 --extrapolate 1");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--extrapolate"), std::string::npos) << r.err;
   r = run("contact --surface " + path("nope.h5") + " --uz 1e-4");
   EXPECT_EQ(r.code, 2);
 }
