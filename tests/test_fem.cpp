@@ -80,11 +80,17 @@ TEST(Fem, PartialContactOnACapIsAdmissible) {
 // place takes a tangential force along +x, below 0.2 Fz (the contact normals blend towards
 // the steep faces near the tips); the mirrored ratchet gives the mirrored force. The vertical
 // linearisation (no rotated normals) cannot see it and gives Fx = 0.
-TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
+// The block of the ratchet tests: 32 x 4 face cells over the 3 cm period.
+BlockSpec ratchet_block() {
   BlockSpec b;
   b.mesh.nx = 32;
   b.mesh.ny = 4;
   b.mesh.min_cells = 2;
+  return b;
+}
+
+TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
+  const BlockSpec b = ratchet_block();
   const std::size_t n = 64;
   const double L = 0.03, dx = L / n, slope = 0.2;
   double mu_follow[2] = {0, 0};
@@ -130,10 +136,7 @@ TEST(Fem, RatchetObstaclePushesAlongItsGentleFaces) {
 // A loose tolerance can be met while a node still sits inside the obstacle; with a penetration
 // limit the iteration goes on (with tighter loose solves) instead of stopping there.
 TEST(Fem, PenetrationLimitKeepsALooseIterationGoing) {
-  BlockSpec b;
-  b.mesh.nx = 32;
-  b.mesh.ny = 4;
-  b.mesh.min_cells = 2;
+  const BlockSpec b = ratchet_block();
   const std::size_t n = 64;
   const double dx = 0.03 / n;
   HeightMap w(n, n, dx, dx);
