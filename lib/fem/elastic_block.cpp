@@ -512,6 +512,11 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   // estimate them per level, with a wider safety margin. Options given by the user win.
   set_default_option("-pc_gamg_use_sa_esteig", "0");
   set_default_option("-mg_levels_ksp_chebyshev_esteig", "0,0.1,0,1.2");
+  // One smoothing step per level instead of PETSc's two: a V-cycle costs about half (the fine
+  // level's matrix products dominate) for a few more CG iterations at most. 100 x 100 scene,
+  // refine 2, tol 1e-3: 38 Signorini / 1227 CG iterations / 146 s in the solves against
+  // 39 / 1409 / 305 s.
+  set_default_option("-mg_levels_ksp_max_it", "1");
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
 
   // Reactions {Fx, Fz} on the top face of the displacement v (Fz counted positive in
