@@ -59,6 +59,7 @@ nlohmann::json step_json(const ContactStep& s) {
           {"signorini_iterations", s.signorini_iterations},
           {"active_set_iterations", s.active_set_iterations},
           {"linear_iterations", s.linear_iterations},
+          {"extrapolations", s.extrapolations},
           {"wall_s", s.wall_s},
           {"converged", s.converged},
           {"message", s.message},

@@ -229,6 +229,12 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   EXPECT_TRUE(js["steps"][1]["mu_drift"].is_number());
   EXPECT_EQ(js["steps"][1]["mu_history"].size(), js["steps"][1]["signorini_iterations"].get<std::size_t>());
   EXPECT_TRUE(js["steps"][0]["mu_drift"].is_null());  // a normal step's mu is not judged
+  // Slow-mode jumps are counted per step: at most one per block of 5 iterations, none in the first.
+  for (const auto& st : js["steps"]) {
+    ASSERT_TRUE(st["extrapolations"].is_number_integer());
+    EXPECT_GE(st["extrapolations"].get<int>(), 0);
+    EXPECT_LE(st["extrapolations"].get<int>(), std::max(0, st["signorini_iterations"].get<int>() / 5 - 1));
+  }
   bool judged = false;
   for (const auto& v : js["validity"]["checks"]) judged |= v["check"] == "friction converged";
   EXPECT_TRUE(judged) << js["validity"].dump();

@@ -15,6 +15,7 @@ struct ContactStep {
   // FEM: geometry (Signorini), active-set and CG iterations; spectral: 1, 0 and the
   // constrained-CG iterations.
   int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
+  int extrapolations = 0;  // FEM: slow-mode (Aitken) jumps taken in the step
   double wall_s = 0;
   double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, phases of the step
   bool converged = false;

@@ -94,6 +94,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.signorini_iterations = s.outer_iterations;
     st.active_set_iterations = s.active_set_iterations;
     st.linear_iterations = s.linear_iterations;
+    st.extrapolations = s.extrapolations;
     st.wall_s = MPI_Wtime() - t0;
     st.wall_linearise = s.wall_linearise;
     st.wall_rotate = s.wall_rotate;
