@@ -370,8 +370,7 @@ int run_contact(ContactCli c) {
   if (c.max_iterations > 0) c.opt.max_iterations = c.max_iterations;
   c.opt.shear = c.problem == "shear";
   if (c.opt.shear && c.opt.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
-  if (c.opt.extrapolate_every < 0 || c.opt.extrapolate_every == 1)
-    throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
+  check_extrapolation_block(c.opt.extrapolate_every);
   c.opt.normal_steps = c.steps;
   c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
   c.opt.follow_geometry = !c.vertical;

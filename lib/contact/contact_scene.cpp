@@ -22,8 +22,7 @@ void check_contact_scene(const ContactScene& s) {
   if (!(s.young > 0)) throw InputError("--E", "must be > 0 Pa");
   if (!(s.poisson > -1 && s.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
   if (!(s.tolerance > 0)) throw InputError("--tol", "must be > 0");
-  if (s.extrapolate_every < 0 || s.extrapolate_every == 1)
-    throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
+  check_extrapolation_block(s.extrapolate_every);
 }
 
 namespace {

@@ -12,6 +12,10 @@
 
 namespace wr {
 
+void check_extrapolation_block(int every) {
+  if (every < 0 || every == 1) throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
+}
+
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
                                    const std::function<void(const ContactStep&)>& on_step) {
   if (!obstacle.periodic) throw InputError("--surface", "the obstacle must be a periodic surface");

@@ -53,6 +53,9 @@ struct ContactTestResult {
 };
 
 
+// --extrapolate's value: 0 (off) or a block of >= 2 Signorini iterations; InputError otherwise.
+void check_extrapolation_block(int every);
+
 // `obstacle` must be periodic. `on_step` (may be empty) is called after every step.
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
                                    const std::function<void(const ContactStep&)>& on_step = {});

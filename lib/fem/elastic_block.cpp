@@ -532,16 +532,25 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     MPI_Allreduce(f, fg, 2, MPI_DOUBLE, MPI_SUM, m.comm);
     return std::array<double, 2>{fg[0], fg[1]};
   };
+  // This rank's face nodes against the obstacle (z = 0 without one) for the displacement array
+  // a: {summed separation, deepest penetration}, m.
+  auto local_face_gaps = [&](const PetscScalar* a) {
+    double sep = 0, pen = 0;
+    for (const FaceNode& f : face) {
+      const Vec3 p{f.x0.x + a[f.row[0] - rstart], f.x0.y + a[f.row[1] - rstart], a[f.row[2] - rstart]};
+      const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
+      sep += std::max(0.0, p.z - h);
+      pen = std::max(pen, h - p.z);
+    }
+    return std::array<double, 2>{sep, pen};
+  };
   // Deepest penetration of the face into the obstacle for the displacement v (collective).
   auto face_penetration = [&](Vec v) {
     const PetscScalar* a;
     VecGetArrayRead(v, &a);
-    double pen = 0, pen_g = 0;
-    for (const FaceNode& f : face) {
-      const Vec3 p{f.x0.x + a[f.row[0] - rstart], f.x0.y + a[f.row[1] - rstart], a[f.row[2] - rstart]};
-      if (load.obstacle) pen = std::max(pen, load.obstacle->height(p.x, p.y) - p.z);
-    }
+    const double pen = local_face_gaps(a)[1];
     VecRestoreArrayRead(v, &a);
+    double pen_g = 0;
     MPI_Allreduce(&pen, &pen_g, 1, MPI_DOUBLE, MPI_MAX, m.comm);
     return pen_g;
   };
@@ -865,16 +874,11 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   const PetscScalar *rr, *uu;
   VecGetArrayRead(r, &rr);
   VecGetArrayRead(m.u, &uu);
-  double fz = 0, fx = 0, fy = 0, sep = 0, pen = 0;
+  double fz = 0, fx = 0, fy = 0;
   for (PetscInt row : top_rows[0]) fx += rr[row - rstart];
   for (PetscInt row : top_rows[1]) fy += rr[row - rstart];
   for (PetscInt row : top_rows[2]) fz -= rr[row - rstart];
-  for (const FaceNode& f : face) {
-    const Vec3 p{f.x0.x + uu[f.row[0] - rstart], f.x0.y + uu[f.row[1] - rstart], uu[f.row[2] - rstart]};
-    const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
-    sep += std::max(0.0, p.z - h);
-    pen = std::max(pen, h - p.z);
-  }
+  const auto [sep, pen] = local_face_gaps(uu);
   if (load.face_maps) {
     const std::size_t nfx = std::size_t(fnx + 1), nf = nfx * std::size_t(fny + 1);
     std::vector<double> local(3 * nf, 0.0);
