@@ -417,7 +417,7 @@ int run_contact(ContactCli c) {
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
+                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
                      {"follow_geometry", c.opt.follow_geometry}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
@@ -510,6 +510,9 @@ Command add_contact(CLI::App& root) {
                 "fem: Aitken jump along the slow mode (the face's creep) every N Signorini iterations; 0: off; "
                 "not with --facet-normals (their iteration is not smooth)")
       ->capture_default_str();
+  s->add_flag("--face-modes", c->opt.face_modes,
+              "fem, fixed top, with --extrapolate: also jump along the face's slide, lateral expansion and twist "
+              "(experimental)");
   s->add_option("--max-penetration", c->opt.max_penetration,
                  "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "
                  "negative: no check)");

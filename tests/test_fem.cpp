@@ -197,6 +197,40 @@ TEST(Fem, SlowModeExtrapolationReachesTheSameFixedPointSooner) {
   EXPECT_LT(fast, plain / 3) << "plain " << plain << ", extrapolated " << fast;
 }
 
+// The face-mode jump on modal coordinates that approach their limit geometrically (ratio 0.9
+// per iteration, the 300 x 300 scene's creep) with a fast mode dying beside them: Aitken's
+// step is exact for a pure geometric series, so the first jump must land within the fast
+// mode's remainder of the limit, and the iterate must then be measured afresh.
+TEST(Fem, FaceModeExtrapolationJumpsToTheLimitOfAGeometricCreep) {
+  const FaceModeExtrapolation::Modes limit{-2e-5, 1e-5, 6e-5, 0.0};
+  FaceModeExtrapolation x(5);
+  auto modes_at = [&](int k) {
+    FaceModeExtrapolation::Modes m;
+    for (int i = 0; i < FaceModeExtrapolation::kModes; ++i)
+      m[i] = limit[i] * (1 - std::pow(0.9, k)) + 1e-9 * std::pow(0.3, k);
+    return m;
+  };
+  int jumped_at = -1;
+  FaceModeExtrapolation::Modes after{};
+  for (int k = 0; k < 40 && jumped_at < 0; ++k) {
+    const auto m = modes_at(k);
+    const auto j = x.after_iteration(m);
+    if (std::any_of(j.begin(), j.end(), [](double v) { return v != 0; })) {
+      jumped_at = k;
+      for (int i = 0; i < FaceModeExtrapolation::kModes; ++i) after[i] = m[i] + j[i];
+    }
+  }
+  ASSERT_EQ(jumped_at, 10);  // started at 0, blocks end at 5 and 10
+  for (int i = 0; i < FaceModeExtrapolation::kModes; ++i) EXPECT_NEAR(after[i], limit[i], 1e-8) << "mode " << i;  // unextrapolated: 0.35 x limit
+  EXPECT_EQ(x.jumps(), 1);
+  // Modes that no longer move (or reverse) give no jump.
+  FaceModeExtrapolation still(5);
+  for (int k = 0; k < 30; ++k) {
+    const auto j = still.after_iteration(limit);
+    EXPECT_TRUE(std::all_of(j.begin(), j.end(), [](double v) { return v == 0; }));
+  }
+}
+
 // Hertz: a paraboloid (R = 10 cm) pressed 60 um into a 2 cm block; contact radius a ~ 2.5 mm,
 // 8 face cells across it (h = 0.31 mm), 8 brick layers per in-plane spacing so that the bulk
 // below the contact is resolved too. Radius and peak pressure fitted from the pressure profile

@@ -65,6 +65,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.follow_geometry = opt.follow_geometry;
   load.damping = opt.damping;
   load.extrapolate_every = opt.extrapolate_every;
+  load.face_mode_extrapolation = opt.face_modes;
   load.tolerance = opt.tolerance;
   load.max_penetration = opt.max_penetration;
   load.ksp_rtol = opt.ksp_rtol;

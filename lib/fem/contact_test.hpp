@@ -28,6 +28,7 @@ struct ContactTestOptions {
   bool follow_geometry = true;
   double damping = 0.8, tolerance = 1e-5;
   int extrapolate_every = 5;  // slow-mode jumps every this many Signorini iterations (0: off)
+  bool face_modes = false;    // also jump along the face's rigid in-plane modes (ContactLoad)
   double ksp_rtol = 1e-7;   // CG relative tolerance of the final linearisation of a step
   double max_penetration = 0;  // m; > 0: a converged step leaving a deeper penetration fails
   int max_iterations = 300;  // Signorini iterations per step

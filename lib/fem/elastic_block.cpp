@@ -499,6 +499,67 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   // a shear step to a state 1.4x deeper in the obstacle than allowed. Blend normals only.
   const bool smooth_map = load.follow_geometry && load.obstacle && !load.facet_normals;
   SlowModeExtrapolation extrapolation(m.u, smooth_map ? load.extrapolate_every : 0);
+  // The face's in-plane rigid modes under a fixed top (FaceModeExtrapolation): slide x,
+  // slide y, dilatation and twist about the face centre, the last two scaled by the face's rms
+  // radius so that every coordinate is a displacement (m). They are orthogonal on the face
+  // lattice, so each coordinate is a projection.
+  const bool modes_on = smooth_map && load.top == TopCondition::fixed && load.face_mode_extrapolation;
+  FaceModeExtrapolation face_extrapolation(modes_on ? load.extrapolate_every : 0);
+  const double xc = 0.5 * m.spec.mesh.lx, yc = 0.5 * m.spec.mesh.ly;
+  double face_radius = 0;  // rms distance of the face nodes from the centre
+  for (int j = 0; j <= fny; ++j)
+    for (int i = 0; i <= fnx; ++i) {
+      const Vec3 p = g.position(0, i, j);
+      face_radius += (p.x - xc) * (p.x - xc) + (p.y - yc) * (p.y - yc);
+    }
+  face_radius = std::sqrt(face_radius / double(out.face_nodes));
+  auto mode_shape = [&](double x, double y, int k) -> std::array<double, 2> {
+    const double rx = (x - xc) / face_radius, ry = (y - yc) / face_radius;
+    switch (k) {
+      case 0: return {1, 0};
+      case 1: return {0, 1};
+      case 2: return {rx, ry};
+      default: return {-ry, rx};
+    }
+  };
+  auto face_modes = [&]() {
+    const PetscScalar* a;
+    VecGetArrayRead(m.u, &a);
+    double s[2 * FaceModeExtrapolation::kModes] = {}, sg[2 * FaceModeExtrapolation::kModes];
+    for (const FaceNode& f : face)
+      for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) {
+        const auto phi = mode_shape(f.x0.x, f.x0.y, k);
+        s[k] += phi[0] * a[f.row[0] - rstart] + phi[1] * a[f.row[1] - rstart];
+        s[FaceModeExtrapolation::kModes + k] += phi[0] * phi[0] + phi[1] * phi[1];
+      }
+    VecRestoreArrayRead(m.u, &a);
+    MPI_Allreduce(s, sg, 2 * FaceModeExtrapolation::kModes, MPI_DOUBLE, MPI_SUM, m.comm);
+    FaceModeExtrapolation::Modes c;
+    for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) c[k] = sg[k] / sg[FaceModeExtrapolation::kModes + k];
+    return c;
+  };
+  auto add_face_modes = [&](const FaceModeExtrapolation::Modes& c) {
+    const auto& planes = g.planes();
+    const double z0 = planes.front().z, lz = planes.back().z - z0;
+    PetscScalar* a;
+    VecGetArray(m.u, &a);
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+      const double w = 1 - (planes[p].z - z0) / lz;  // 1 on the face, 0 on the fixed top
+      const int nxp = g.cells_x(planes[p].level), nyp = g.cells_y(planes[p].level);
+      for (int j = 0; j <= nyp; ++j)
+        for (int i = 0; i <= nxp; ++i) {
+          const std::int32_t id = planes[p].id[std::size_t(j) * (nxp + 1) + i];
+          if (id < 0 || !m.owns(id)) continue;
+          const Vec3 x = g.position(int(p), i, j);
+          for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) {
+            const auto phi = mode_shape(x.x, x.y, k);
+            a[m.dof(id, 0) - rstart] += w * c[k] * phi[0];
+            a[m.dof(id, 1) - rstart] += w * c[k] * phi[1];
+          }
+        }
+    }
+    VecRestoreArray(m.u, &a);
+  };
   KSP ksp;
   check(KSPCreate(m.comm, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
@@ -833,9 +894,22 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     }
     out.final_damping = alpha;
     if (const double jump = extrapolation.after_iteration(m.u); jump > 0) {
-      out.extrapolations = extrapolation.jumps();
+      out.extrapolations = extrapolation.jumps() + face_extrapolation.jumps();
       if (load.trace && m.rank == 0) std::fprintf(stderr, "    slow-mode extrapolation: factor %.2f\n", jump);
+      if (modes_on) face_extrapolation.restart(face_modes());
       continue;  // the change measured before the jump says nothing about the new iterate
+    }
+    if (modes_on) {
+      const auto c = face_extrapolation.after_iteration(face_modes());
+      if (std::any_of(c.begin(), c.end(), [](double v) { return v != 0; })) {
+        add_face_modes(c);
+        extrapolation.restart(m.u);
+        out.extrapolations = extrapolation.jumps() + face_extrapolation.jumps();
+        if (load.trace && m.rank == 0)
+          std::fprintf(stderr, "    face-mode extrapolation: slide (%.2e, %.2e) dilatation %.2e twist %.2e m\n", c[0],
+                       c[1], c[2], c[3]);
+        continue;
+      }
     }
     if (final_pass && step_change > load.tolerance) {
       // Not confirmed: the loose solves were too loose to see the change that is left. Go on

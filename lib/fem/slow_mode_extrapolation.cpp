@@ -1,6 +1,7 @@
 #include "lib/fem/slow_mode_extrapolation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -50,6 +51,54 @@ double SlowModeExtrapolation::after_iteration(Vec u) {
   check(VecCopy(change_, previous_), "VecCopy");
   check(VecCopy(u, start_), "VecCopy");
   return factor;
+}
+
+void SlowModeExtrapolation::restart(Vec u) {
+  if (!every_) return;
+  check(VecCopy(u, start_), "VecCopy");
+  have_previous_ = false;
+  count_ = 0;
+}
+
+FaceModeExtrapolation::Modes FaceModeExtrapolation::after_iteration(const Modes& modes) {
+  Modes jump{};
+  if (!every_) return jump;
+  if (!started_) {
+    restart(modes);
+    return jump;
+  }
+  if (++count_ % every_ != 0) return jump;
+  Modes change;
+  double now = 0, before = 0, dot = 0;
+  for (int k = 0; k < kModes; ++k) {
+    change[k] = modes[k] - start_[k];
+    now += change[k] * change[k];
+    before += previous_[k] * previous_[k];
+    dot += change[k] * previous_[k];
+  }
+  now = std::sqrt(now);
+  before = std::sqrt(before);
+  bool jumped = false;
+  if (have_previous_ && now > 0 && before > 0) {
+    const double q = now / before, cosine = dot / (now * before);
+    if (cosine > SlowModeExtrapolation::kMinCosine && q < SlowModeExtrapolation::kMaxRatio) {
+      const double factor = std::min(q / (1 - q), SlowModeExtrapolation::kMaxFactor);
+      for (int k = 0; k < kModes; ++k) jump[k] = factor * change[k];
+      jumped = true;
+      ++jumps_;
+    }
+  }
+  have_previous_ = !jumped;
+  previous_ = change;
+  for (int k = 0; k < kModes; ++k) start_[k] = modes[k] + jump[k];
+  return jump;
+}
+
+void FaceModeExtrapolation::restart(const Modes& modes) {
+  start_ = modes;
+  started_ = true;
+  count_ = 0;
+  have_previous_ = false;
 }
 
 }  // namespace wr
