@@ -506,13 +506,16 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   const bool modes_on = smooth_map && load.top == TopCondition::fixed && load.face_mode_extrapolation;
   FaceModeExtrapolation face_extrapolation(modes_on ? load.extrapolate_every : 0);
   const double xc = 0.5 * m.spec.mesh.lx, yc = 0.5 * m.spec.mesh.ly;
-  double face_radius = 0;  // rms distance of the face nodes from the centre
-  for (int j = 0; j <= fny; ++j)
-    for (int i = 0; i <= fnx; ++i) {
-      const Vec3 p = g.position(0, i, j);
-      face_radius += (p.x - xc) * (p.x - xc) + (p.y - yc) * (p.y - yc);
-    }
-  face_radius = std::sqrt(face_radius / double(out.face_nodes));
+  double face_radius = 1;  // rms distance of the face nodes from the centre (only when modes_on)
+  if (modes_on) {
+    double sum = 0;
+    for (int j = 0; j <= fny; ++j)
+      for (int i = 0; i <= fnx; ++i) {
+        const Vec3 p = g.position(0, i, j);
+        sum += (p.x - xc) * (p.x - xc) + (p.y - yc) * (p.y - yc);
+      }
+    face_radius = std::sqrt(sum / double(out.face_nodes));
+  }
   auto mode_shape = [&](double x, double y, int k) -> std::array<double, 2> {
     const double rx = (x - xc) / face_radius, ry = (y - yc) / face_radius;
     switch (k) {

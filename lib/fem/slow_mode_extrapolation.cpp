@@ -14,6 +14,13 @@ void check(PetscErrorCode ierr, const char* what) {
 
 }  // namespace
 
+double aitken_jump_factor(double now, double before, double dot) {
+  if (!(now > 0 && before > 0)) return 0.0;
+  const double q = now / before, cosine = dot / (now * before);
+  if (cosine <= SlowModeExtrapolation::kMinCosine || q >= SlowModeExtrapolation::kMaxRatio) return 0.0;
+  return std::min(q / (1 - q), SlowModeExtrapolation::kMaxFactor);
+}
+
 SlowModeExtrapolation::SlowModeExtrapolation(Vec like, int every) : every_(every >= 2 ? every : 0) {
   if (!every_) return;
   check(VecDuplicate(like, &start_), "VecDuplicate");
@@ -38,10 +45,8 @@ double SlowModeExtrapolation::after_iteration(Vec u) {
     check(VecNorm(change_, NORM_2, &now), "VecNorm");
     check(VecNorm(previous_, NORM_2, &before), "VecNorm");
     check(VecDot(change_, previous_, &dot), "VecDot");
-    const double q = before > 0 ? now / before : 1.0;
-    const double cosine = now > 0 && before > 0 ? dot / (now * before) : 0.0;
-    if (cosine > kMinCosine && q < kMaxRatio) {
-      factor = std::min(q / (1 - q), kMaxFactor);
+    factor = aitken_jump_factor(now, before, dot);
+    if (factor > 0) {
       check(VecAXPY(u, factor, change_), "VecAXPY");
       ++jumps_;
     }
@@ -76,17 +81,11 @@ FaceModeExtrapolation::Modes FaceModeExtrapolation::after_iteration(const Modes&
     before += previous_[k] * previous_[k];
     dot += change[k] * previous_[k];
   }
-  now = std::sqrt(now);
-  before = std::sqrt(before);
-  bool jumped = false;
-  if (have_previous_ && now > 0 && before > 0) {
-    const double q = now / before, cosine = dot / (now * before);
-    if (cosine > SlowModeExtrapolation::kMinCosine && q < SlowModeExtrapolation::kMaxRatio) {
-      const double factor = std::min(q / (1 - q), SlowModeExtrapolation::kMaxFactor);
-      for (int k = 0; k < kModes; ++k) jump[k] = factor * change[k];
-      jumped = true;
-      ++jumps_;
-    }
+  const double factor = have_previous_ ? aitken_jump_factor(std::sqrt(now), std::sqrt(before), dot) : 0.0;
+  const bool jumped = factor > 0;
+  if (jumped) {
+    for (int k = 0; k < kModes; ++k) jump[k] = factor * change[k];
+    ++jumps_;
   }
   have_previous_ = !jumped;
   previous_ = change;

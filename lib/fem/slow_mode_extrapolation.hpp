@@ -23,6 +23,11 @@
 
 namespace wr {
 
+// The jump factor q / (1 - q) (at most kMaxFactor) for a block change of norm `now` after one
+// of norm `before`, `dot` their inner product; 0 unless they point the same way (cosine >
+// kMinCosine) and shrink (q < kMaxRatio). Shared by both extrapolations below.
+double aitken_jump_factor(double now, double before, double dot);
+
 class SlowModeExtrapolation {
  public:
   static constexpr double kMinCosine = 0.9;
