@@ -630,7 +630,8 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   int first_its = -1;  // CG iterations with a fresh preconditioner
   std::vector<double> prev_corr(3 * face.size(), 0.0);
   bool final_pass = false;
-  double loose_factor = 0.01;  // CG rtol of a loose solve = loose_factor x the last change
+  double loose_factor = 0.01;  // CG rtol of a loose solve = loose_factor x smallest_change
+  double smallest_change = INFINITY;  // of this step's Signorini iterations so far
   const double t_solve_start = MPI_Wtime();
   double last_progress = t_solve_start;
   for (int outer = 0; outer < outer_max; ++outer) {
@@ -699,10 +700,16 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
 
     // 3. Primal-dual active set on the bounds uh_z >= g at the face nodes. Early
     // linearisations are only approximations of the final one: solve them loosely (CG
-    // tolerance a hundredth of the last relative change), tightening to ksp_rtol at the end.
+    // tolerance a hundredth of the smallest relative change of the step so far), tightening
+    // to ksp_rtol at the end. Why the smallest and not the last: a loose solve under-reports
+    // the change (CG, warm-started, stops before it has moved u all the way), so a tolerance
+    // tied to the last change alternated: on the 300 x 300 obstacle a solve at rtol 5e-5
+    // (~15 CG) reported 2e-3, which made the next tight (2e-5, ~30 CG, 6e-3), and so on; the
+    // alternating block changes then fooled the slow-mode jump into a factor-11 overshoot.
+    // A running minimum only ever tightens, so it cannot feed back.
     double rtol = load.ksp_rtol;
     if (load.inexact && load.follow_geometry && load.obstacle && !final_pass)
-      rtol = std::clamp(out.history.empty() ? 1e-3 : loose_factor * out.history.back(), load.ksp_rtol, 1e-3);
+      rtol = std::clamp(out.history.empty() ? 1e-3 : loose_factor * smallest_change, load.ksp_rtol, 1e-3);
     check(KSPSetTolerances(ksp, rtol, 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
     // The first system of a loose linearisation must at least cut its residual tenfold (see
     // LeastReductionTest); the active-set corrections after it start close to their answer.
@@ -864,6 +871,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     // judged on the capped step alpha_cap x change. The penetration check of the caller guards
     // against stopping on a small alpha alone.
     out.history.push_back(change);
+    smallest_change = std::min(smallest_change, change);
     const int window = 15, k = int(out.history.size());
     if (load.follow_geometry && k >= 2 * window && k - last_cap_cut >= 2 * window) {
       const auto h = out.history.end();

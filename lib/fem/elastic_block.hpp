@@ -54,7 +54,7 @@ struct ContactLoad {
   double max_penetration = 0;
   int max_outer_iterations = 300;
   double ksp_rtol = 1e-7;         // CG tolerance of the final linearisations
-  bool inexact = true;            // early linearisations solved loosely (rtol ~ 0.01 x the change)
+  bool inexact = true;            // early linearisations solved loosely (rtol ~ 0.01 x the smallest change so far)
   int max_active_set_iterations = 60;
   // PDAS iterations allowed in a Signorini iteration before the last (the active set then goes
   // on settling across outer iterations; 35 % faster per iteration). Off by default: on a
