@@ -60,6 +60,7 @@ nlohmann::json step_json(const ContactStep& s) {
           {"active_set_iterations", s.active_set_iterations},
           {"linear_iterations", s.linear_iterations},
           {"extrapolations", s.extrapolations},
+          {"rejected_jumps", s.rejected_jumps},
           {"wall_s", s.wall_s},
           {"converged", s.converged},
           {"message", s.message},

@@ -7,6 +7,7 @@
 #include "lib/analytic/hertz.hpp"
 #include "lib/fem/elastic_block.hpp"
 #include "lib/fem/petsc_session.hpp"
+#include "lib/fem/adaptive_damping.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 
 namespace wr {
@@ -229,6 +230,57 @@ TEST(Fem, FaceModeExtrapolationJumpsToTheLimitOfAGeometricCreep) {
     const auto j = still.after_iteration(limit);
     EXPECT_TRUE(std::all_of(j.begin(), j.end(), [](double v) { return v == 0; }));
   }
+}
+
+// The damping of Algorithm 1: a reversing correction (chatter) halves it, corrections that keep
+// their direction restore it 1.5x per iteration up to the nominal value; a stalled change
+// history halves the ceiling, once per two windows, and the convergence test then judges the
+// capped step.
+TEST(Fem, AdaptiveDampingHalvesOnChatterAndCapsOnStagnation) {
+  AdaptiveDamping d(0.8);
+  d.after_correction(-0.9);
+  EXPECT_DOUBLE_EQ(d.alpha(), 0.4);
+  d.after_correction(0.0);  // neither reversing nor keeping its direction: unchanged
+  EXPECT_DOUBLE_EQ(d.alpha(), 0.4);
+  d.after_correction(NAN);  // no previous correction
+  EXPECT_DOUBLE_EQ(d.alpha(), 0.4);
+  d.after_correction(0.9);
+  EXPECT_DOUBLE_EQ(d.alpha(), 0.6);
+  d.after_correction(0.9);
+  EXPECT_DOUBLE_EQ(d.alpha(), 0.8);  // 0.9 capped at the nominal value
+  for (int k = 0; k < 20; ++k) d.after_correction(-1.0);
+  EXPECT_DOUBLE_EQ(d.alpha(), AdaptiveDamping::kMinAlpha);
+  EXPECT_FALSE(d.capped());
+  EXPECT_DOUBLE_EQ(d.step_change(1e-3), 1e-3);
+
+  // A decreasing history never cuts the ceiling; a flat one does, after two windows, and
+  // again only two windows later.
+  const std::size_t w = AdaptiveDamping::kWindow;
+  AdaptiveDamping s(0.8);
+  std::vector<double> h;
+  for (std::size_t k = 0; k < 4 * w; ++k) {
+    h.push_back(std::pow(0.9, double(k)));
+    s.after_change(h);
+  }
+  EXPECT_FALSE(s.capped());
+  AdaptiveDamping f(0.8);
+  h.clear();
+  std::vector<std::size_t> cuts;
+  double cap_before = 0.8;
+  for (std::size_t k = 0; k < 6 * w; ++k) {
+    h.push_back(1e-2);
+    f.after_change(h);
+    if (f.capped() && f.step_change(1.0) < cap_before) {
+      cuts.push_back(h.size());
+      cap_before = f.step_change(1.0);
+    }
+  }
+  ASSERT_EQ(cuts.size(), 3u);
+  EXPECT_EQ(cuts[0], 2 * w);
+  EXPECT_EQ(cuts[1], 4 * w);
+  EXPECT_EQ(cuts[2], 6 * w);
+  EXPECT_DOUBLE_EQ(f.step_change(1e-2), 0.1 * 1e-2);  // ceiling 0.8 -> 0.4 -> 0.2 -> 0.1
+  EXPECT_LE(f.alpha(), 0.1);
 }
 
 // Hertz: a paraboloid (R = 10 cm) pressed 60 um into a 2 cm block; contact radius a ~ 2.5 mm,

@@ -16,6 +16,7 @@ struct ContactStep {
   // constrained-CG iterations.
   int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
   int extrapolations = 0;  // FEM: slow-mode (Aitken) jumps taken in the step
+  int rejected_jumps = 0;  // FEM: of them, undone (the contact set collapsed after the jump)
   double wall_s = 0;
   double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, phases of the step
   bool converged = false;

@@ -100,6 +100,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.active_set_iterations = s.active_set_iterations;
     st.linear_iterations = s.linear_iterations;
     st.extrapolations = s.extrapolations;
+    st.rejected_jumps = s.rejected_jumps;
     st.wall_s = MPI_Wtime() - t0;
     st.wall_linearise = s.wall_linearise;
     st.wall_rotate = s.wall_rotate;

@@ -9,7 +9,9 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
+#include "lib/fem/adaptive_damping.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/io/vtu_writer.hpp"
 
@@ -101,6 +103,42 @@ ElementMatrix brick_stiffness(double hx, double hy, double hz, double E, double 
       }
   return K;
 }
+
+struct FaceNode {
+  std::int32_t i, j;
+  PetscInt row[3];  // global dofs
+  Vec3 x0;          // reference position
+  Vec3 normal{0, 0, 1};  // obstacle normal N of the current linearisation
+  double g = -INFINITY;  // bound on N . u (-inf: no obstacle within reach)
+};
+
+// The contact face's in-plane rigid modes (FaceModeExtrapolation): slide x, slide y,
+// dilatation and twist about the face centre, the last two scaled by the face's rms radius so
+// that every coordinate is a displacement (m). They are orthogonal on the face lattice, so each
+// coordinate is a projection.
+struct FaceModeBasis {
+  double xc, yc, radius = 1;  // m; the radius only computed when `on`
+  FaceModeBasis(const GradedMesh& g, double lx, double ly, int fnx, int fny, bool on) : xc(0.5 * lx), yc(0.5 * ly) {
+    if (!on) return;
+    double sum = 0;
+    for (int j = 0; j <= fny; ++j)
+      for (int i = 0; i <= fnx; ++i) {
+        const Vec3 p = g.position(0, i, j);
+        sum += (p.x - xc) * (p.x - xc) + (p.y - yc) * (p.y - yc);
+      }
+    radius = std::sqrt(sum / double((fnx + 1) * (fny + 1)));
+  }
+  // In-plane shape {x, y} of mode k at (x, y).
+  std::array<double, 2> shape(double x, double y, int k) const {
+    const double rx = (x - xc) / radius, ry = (y - yc) / radius;
+    switch (k) {
+      case 0: return {1, 0};
+      case 1: return {0, 1};
+      case 2: return {rx, ry};
+      default: return {-ry, rx};
+    }
+  }
+};
 
 }  // namespace
 
@@ -351,6 +389,75 @@ struct ElasticBlock::Impl {
     check(VecScatterBegin(face_scatter, u, face_u, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
     check(VecScatterEnd(face_scatter, u, face_u, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
   }
+
+  // ---- The phases of one solve() (Algorithm 1), defined below it ----
+  // The prescribed top dofs (and, under a frictionless top, the minimal pins of two face
+  // corners), and the rows whose reactions are the top's forces.
+  struct TopBoundary {
+    std::vector<PetscInt> fixed_rows;
+    std::vector<double> fixed_vals;
+    std::vector<PetscInt> top_rows[3];
+  };
+  // The working set of a solve: the rotated matrix Khat = R^T K R, the reduced matrix A (active
+  // rows eliminated), vectors in the rotated frames, and CG preconditioned by GAMG.
+  struct LinearSystems {
+    Mat khat = nullptr, a = nullptr;
+    Vec uh = nullptr, b = nullptr, r = nullptr, diag = nullptr, ustar = nullptr;
+    KSP ksp = nullptr;
+    Vec before_jump = nullptr;  // the iterate before the last slow-mode jump
+    std::vector<double> q_all, q_mine;  // constraint frames, 9 per face slot (all face nodes)
+    int first_its = -1;                 // CG iterations with a fresh preconditioner
+    LinearSystems(MPI_Comm comm, Mat K, Vec like, std::size_t face_nodes);
+    ~LinearSystems();
+    LinearSystems(const LinearSystems&) = delete;
+    LinearSystems& operator=(const LinearSystems&) = delete;
+  };
+  struct ActiveSetControl {
+    double unit_diag = 1;           // diagonal of eliminated rows
+    bool loose = false;             // a loose solve: its first system cuts the residual tenfold
+    bool accept_unsettled = false;  // an early linearisation may end with the set still moving
+    int max_iterations = 1;
+    bool reuse_preconditioner = true;
+  };
+  struct ActiveSetOutcome {
+    bool ok = false, settled = false;  // usable; active set unchanged by the last solve
+    std::size_t contact = 0;           // this rank's active face nodes
+  };
+  struct Correction {
+    double change = 0;    // |u* - u| / |u*| on the face
+    double cosine = NAN;  // with the previous correction (NaN: none)
+  };
+
+  std::vector<FaceNode> owned_face_nodes() const;
+  // Writes the top's prescribed values into u.
+  TopBoundary prescribe_top(const ContactLoad& load);
+  // Step 1: normal and gap bound of each face node at the current configuration, by a ray cast
+  // along the deformed face's normal (thesis Fig. 4.6).
+  void linearise(std::vector<FaceNode>& face, const ContactLoad& load) const;
+  // Step 2: Khat = R^T K R and uh = R^T u in the nodes' constraint frames; returns the
+  // diagonal scale for eliminated rows.
+  double rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s) const;
+  // Step 3: primal-dual active set on the bounds uh_z >= g; the solution is left in s.uh, the
+  // rotated reactions in s.r, the contact set in `active`. Counts and failures go into `out`.
+  ActiveSetOutcome solve_active_set(const std::vector<FaceNode>& face, const TopBoundary& top, LinearSystems& s,
+                                    const ActiveSetControl& control, ContactSolution& out);
+  // Step 4: the correction u* - u on the face; prev_corr (3 per face node) becomes this one.
+  Correction measure_correction(const std::vector<FaceNode>& face, Vec ustar, std::vector<double>& prev_corr) const;
+  // {summed separation, deepest penetration} (m) of this rank's face nodes for the
+  // displacement array a.
+  std::array<double, 2> face_gaps(const std::vector<FaceNode>& face, const PetscScalar* a,
+                                  const ContactLoad& load) const;
+  double deepest_penetration(const std::vector<FaceNode>& face, Vec v, const ContactLoad& load) const;  // collective
+  // {Fx, Fz} on the top face for displacement v (Fz > 0 in compression); `work` is overwritten.
+  std::array<double, 2> top_forces(Vec v, const TopBoundary& top, Vec work) const;
+  FaceModeExtrapolation::Modes face_mode_coordinates(const std::vector<FaceNode>& face,
+                                                     const FaceModeBasis& basis) const;
+  // Adds the modal displacement c through the block, fading linearly to the fixed top.
+  void add_face_modes(const FaceModeBasis& basis, const FaceModeExtrapolation::Modes& c);
+  // Reactions, separation, penetration and (if asked) the face maps of the final u.
+  void output_results(const std::vector<FaceNode>& face, const TopBoundary& top,
+                      const std::vector<double>& normal_force, const ContactLoad& load, Vec work,
+                      ContactSolution& out) const;
 };
 
 ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
@@ -424,152 +531,61 @@ void ElasticBlock::write_vtu(const std::string& path) const {
   VecDestroy(&all);
 }
 
-namespace {
+// ---- One solve(): Algorithm 1 of the thesis (sec. 4.2), one phase per function ----
 
-struct FaceNode {
-  std::int32_t i, j;
-  PetscInt row[3];  // global dofs
-  Vec3 x0;          // reference position
-  Vec3 normal{0, 0, 1};  // obstacle normal N of the current linearisation
-  double g = -INFINITY;  // bound on N . u (-inf: no obstacle within reach)
-};
-
-
-}  // namespace
-
-ContactSolution ElasticBlock::solve(const ContactLoad& load) {
-  Impl& m = *impl_;
-  const GradedMesh& g = *m.mesh;
-  const int fnx = m.face_nx(), fny = m.face_ny();
-  ContactSolution out;
-  out.face_nodes = std::size_t(fnx + 1) * (fny + 1);
-  const PetscInt rstart = 3 * PetscInt(m.own_begin);
-
+std::vector<FaceNode> ElasticBlock::Impl::owned_face_nodes() const {
+  const GradedMesh& g = *mesh;
   std::vector<FaceNode> face;
-  for (int j = 0; j <= fny; ++j)
-    for (int i = g.owned_i_begin(m.rank, 0); i < g.owned_i_end(m.rank, 0); ++i) {
+  for (int j = 0; j <= face_ny(); ++j)
+    for (int i = g.owned_i_begin(rank, 0); i < g.owned_i_end(rank, 0); ++i) {
       const std::int32_t id = g.node(0, i, j);
-      face.push_back(FaceNode{i, j, {m.dof(id, 0), m.dof(id, 1), m.dof(id, 2)}, g.position(0, i, j)});
+      face.push_back(FaceNode{i, j, {dof(id, 0), dof(id, 1), dof(id, 2)}, g.position(0, i, j)});
     }
-  if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
+  return face;
+}
 
-  // Prescribed top dofs and the minimal pins of a frictionless top.
-  std::vector<PetscInt> fixed_rows;
-  std::vector<double> fixed_vals;
-  std::vector<PetscInt> top_rows[3];
+ElasticBlock::Impl::TopBoundary ElasticBlock::Impl::prescribe_top(const ContactLoad& load) {
+  const GradedMesh& g = *mesh;
+  TopBoundary t;
   const int top = g.layers(), top_level = g.planes()[top].level;
   for (int j = 0; j <= g.cells_y(top_level); ++j)
-    for (int i = g.owned_i_begin(m.rank, top_level); i < g.owned_i_end(m.rank, top_level); ++i)
+    for (int i = g.owned_i_begin(rank, top_level); i < g.owned_i_end(rank, top_level); ++i)
       for (int c = 0; c < 3; ++c) {
-        const PetscInt row = m.dof(g.node(top, i, j), c);
-        top_rows[c].push_back(row);
+        const PetscInt row = dof(g.node(top, i, j), c);
+        t.top_rows[c].push_back(row);
         if (load.top == TopCondition::frictionless && c < 2) continue;
-        fixed_rows.push_back(row);
-        fixed_vals.push_back(c == 0 ? load.ux : (c == 1 ? 0.0 : -load.uz));
+        t.fixed_rows.push_back(row);
+        t.fixed_vals.push_back(c == 0 ? load.ux : (c == 1 ? 0.0 : -load.uz));
       }
   if (load.top == TopCondition::frictionless) {
     // In-plane rigid motion is free: pin two face corners.
-    const std::int32_t c0 = g.node(0, 0, 0), c1 = g.node(0, fnx, 0);
-    if (m.owns(c0)) {
-      fixed_rows.insert(fixed_rows.end(), {m.dof(c0, 0), m.dof(c0, 1)});
-      fixed_vals.insert(fixed_vals.end(), {0.0, 0.0});
+    const std::int32_t c0 = g.node(0, 0, 0), c1 = g.node(0, face_nx(), 0);
+    if (owns(c0)) {
+      t.fixed_rows.insert(t.fixed_rows.end(), {dof(c0, 0), dof(c0, 1)});
+      t.fixed_vals.insert(t.fixed_vals.end(), {0.0, 0.0});
     }
-    if (m.owns(c1)) {
-      fixed_rows.push_back(m.dof(c1, 1));
-      fixed_vals.push_back(0.0);
+    if (owns(c1)) {
+      t.fixed_rows.push_back(dof(c1, 1));
+      t.fixed_vals.push_back(0.0);
     }
   }
-  check(VecSetValues(m.u, PetscInt(fixed_rows.size()), fixed_rows.data(), fixed_vals.data(), INSERT_VALUES), "VecSetValues");
-  check(VecAssemblyBegin(m.u), "VecAssemblyBegin");
-  check(VecAssemblyEnd(m.u), "VecAssemblyEnd");
+  check(VecSetValues(u, PetscInt(t.fixed_rows.size()), t.fixed_rows.data(), t.fixed_vals.data(), INSERT_VALUES),
+        "VecSetValues");
+  check(VecAssemblyBegin(u), "VecAssemblyBegin");
+  check(VecAssemblyEnd(u), "VecAssemblyEnd");
+  return t;
+}
 
-  Mat Khat = nullptr, A = nullptr;
-  check(MatDuplicate(m.K, MAT_DO_NOT_COPY_VALUES, &Khat), "MatDuplicate");
-  check(MatDuplicate(m.K, MAT_DO_NOT_COPY_VALUES, &A), "MatDuplicate");
-  // Constraint frames Q of all face nodes (every rank needs those of its rows' neighbours).
-  std::vector<double> q_all(9 * std::size_t(out.face_nodes)), q_mine(q_all.size());
-  Vec uh, b, r, diag, ustar;
-  check(VecDuplicate(m.u, &uh), "VecDuplicate");
-  check(VecDuplicate(m.u, &b), "VecDuplicate");
-  check(VecDuplicate(m.u, &r), "VecDuplicate");
-  check(VecDuplicate(m.u, &diag), "VecDuplicate");
-  check(VecDuplicate(m.u, &ustar), "VecDuplicate");
-  // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
-  // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led
-  // a shear step to a state 1.4x deeper in the obstacle than allowed. Blend normals only.
-  const bool smooth_map = load.follow_geometry && load.obstacle && !load.facet_normals;
-  SlowModeExtrapolation extrapolation(m.u, smooth_map ? load.extrapolate_every : 0);
-  // The face's in-plane rigid modes under a fixed top (FaceModeExtrapolation): slide x,
-  // slide y, dilatation and twist about the face centre, the last two scaled by the face's rms
-  // radius so that every coordinate is a displacement (m). They are orthogonal on the face
-  // lattice, so each coordinate is a projection.
-  const bool modes_on = smooth_map && load.top == TopCondition::fixed && load.face_mode_extrapolation;
-  FaceModeExtrapolation face_extrapolation(modes_on ? load.extrapolate_every : 0);
-  const double xc = 0.5 * m.spec.mesh.lx, yc = 0.5 * m.spec.mesh.ly;
-  double face_radius = 1;  // rms distance of the face nodes from the centre (only when modes_on)
-  if (modes_on) {
-    double sum = 0;
-    for (int j = 0; j <= fny; ++j)
-      for (int i = 0; i <= fnx; ++i) {
-        const Vec3 p = g.position(0, i, j);
-        sum += (p.x - xc) * (p.x - xc) + (p.y - yc) * (p.y - yc);
-      }
-    face_radius = std::sqrt(sum / double(out.face_nodes));
-  }
-  auto mode_shape = [&](double x, double y, int k) -> std::array<double, 2> {
-    const double rx = (x - xc) / face_radius, ry = (y - yc) / face_radius;
-    switch (k) {
-      case 0: return {1, 0};
-      case 1: return {0, 1};
-      case 2: return {rx, ry};
-      default: return {-ry, rx};
-    }
-  };
-  auto face_modes = [&]() {
-    const PetscScalar* a;
-    VecGetArrayRead(m.u, &a);
-    double s[2 * FaceModeExtrapolation::kModes] = {}, sg[2 * FaceModeExtrapolation::kModes];
-    for (const FaceNode& f : face)
-      for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) {
-        const auto phi = mode_shape(f.x0.x, f.x0.y, k);
-        s[k] += phi[0] * a[f.row[0] - rstart] + phi[1] * a[f.row[1] - rstart];
-        s[FaceModeExtrapolation::kModes + k] += phi[0] * phi[0] + phi[1] * phi[1];
-      }
-    VecRestoreArrayRead(m.u, &a);
-    MPI_Allreduce(s, sg, 2 * FaceModeExtrapolation::kModes, MPI_DOUBLE, MPI_SUM, m.comm);
-    FaceModeExtrapolation::Modes c;
-    for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) c[k] = sg[k] / sg[FaceModeExtrapolation::kModes + k];
-    return c;
-  };
-  auto add_face_modes = [&](const FaceModeExtrapolation::Modes& c) {
-    const auto& planes = g.planes();
-    const double z0 = planes.front().z, lz = planes.back().z - z0;
-    PetscScalar* a;
-    VecGetArray(m.u, &a);
-    for (std::size_t p = 0; p < planes.size(); ++p) {
-      const double w = 1 - (planes[p].z - z0) / lz;  // 1 on the face, 0 on the fixed top
-      const int nxp = g.cells_x(planes[p].level), nyp = g.cells_y(planes[p].level);
-      for (int j = 0; j <= nyp; ++j)
-        for (int i = 0; i <= nxp; ++i) {
-          const std::int32_t id = planes[p].id[std::size_t(j) * (nxp + 1) + i];
-          if (id < 0 || !m.owns(id)) continue;
-          const Vec3 x = g.position(int(p), i, j);
-          for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) {
-            const auto phi = mode_shape(x.x, x.y, k);
-            a[m.dof(id, 0) - rstart] += w * c[k] * phi[0];
-            a[m.dof(id, 1) - rstart] += w * c[k] * phi[1];
-          }
-        }
-    }
-    VecRestoreArray(m.u, &a);
-  };
-  KSP ksp;
-  check(KSPCreate(m.comm, &ksp), "KSPCreate");
+ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Mat K, Vec like, std::size_t face_nodes)
+    : q_all(9 * face_nodes), q_mine(q_all.size()) {
+  check(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &khat), "MatDuplicate");
+  check(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &a), "MatDuplicate");
+  for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) check(VecDuplicate(like, v), "VecDuplicate");
+  check(KSPCreate(comm, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
   check(PCSetType(pc, PCGAMG), "PCSetType");
-  check(KSPSetTolerances(ksp, load.ksp_rtol, 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
   check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   // Chebyshev smoothers with eigenvalue bounds estimated by the smoothed-aggregation step came
   // out too low on rough-surface systems (KSP_DIVERGED_INDEFINITE_PC at tight tolerances):
@@ -582,52 +598,357 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   // 39 / 1409 / 305 s.
   set_default_option("-mg_levels_ksp_max_it", "1");
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+}
 
-  // Reactions {Fx, Fz} on the top face of the displacement v (Fz counted positive in
-  // compression): every iteration's friction ratio is kept (friction_convergence.hpp).
-  auto top_forces = [&](Vec v) {
-    check(MatMult(m.K, v, r), "MatMult");
-    const PetscScalar* ra;
-    VecGetArrayRead(r, &ra);
-    double f[2] = {0, 0}, fg[2];
-    for (PetscInt row : top_rows[0]) f[0] += ra[row - rstart];
-    for (PetscInt row : top_rows[2]) f[1] -= ra[row - rstart];
-    VecRestoreArrayRead(r, &ra);
-    MPI_Allreduce(f, fg, 2, MPI_DOUBLE, MPI_SUM, m.comm);
-    return std::array<double, 2>{fg[0], fg[1]};
+ElasticBlock::Impl::LinearSystems::~LinearSystems() {
+  KSPDestroy(&ksp);
+  MatDestroy(&a);
+  MatDestroy(&khat);
+  for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) VecDestroy(v);
+}
+
+void ElasticBlock::Impl::linearise(std::vector<FaceNode>& face, const ContactLoad& load) const {
+  const GradedMesh& g = *mesh;
+  const int fnx = face_nx(), fny = face_ny();
+  const double reach = std::max(spec.mesh.lz, 1e-12);  // rays look this far for the obstacle
+  gather_face();
+  const PetscScalar* fu;
+  check(VecGetArrayRead(face_u, &fu), "VecGetArrayRead");
+  auto X = [&](int i, int j) {
+    const std::size_t k = 3 * (std::size_t(j) * (fnx + 1) + i);
+    return g.position(0, i, j) + Vec3{fu[k], fu[k + 1], fu[k + 2]};
   };
-  // This rank's face nodes against the obstacle (z = 0 without one) for the displacement array
-  // a: {summed separation, deepest penetration}, m.
-  auto local_face_gaps = [&](const PetscScalar* a) {
-    double sep = 0, pen = 0;
-    for (const FaceNode& f : face) {
-      const Vec3 p{f.x0.x + a[f.row[0] - rstart], f.x0.y + a[f.row[1] - rstart], a[f.row[2] - rstart]};
-      const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
-      sep += std::max(0.0, p.z - h);
-      pen = std::max(pen, h - p.z);
+  for (FaceNode& f : face) {
+    if (!load.obstacle) {
+      f.normal = {0, 0, 1};
+      f.g = 0.0;
+      continue;
     }
-    return std::array<double, 2>{sep, pen};
-  };
-  // Deepest penetration of the face into the obstacle for the displacement v (collective).
-  auto face_penetration = [&](Vec v) {
+    if (!load.follow_geometry) {
+      f.normal = {0, 0, 1};
+      f.g = load.obstacle->height(f.x0.x, f.x0.y);
+      continue;
+    }
+    const Vec3 here = X(f.i, f.j);
+    // Outward normal of the deformed face (pointing down), from the neighbours' positions.
+    const Vec3 t1 = X(std::min(f.i + 1, fnx), f.j) - X(std::max(f.i - 1, 0), f.j);
+    const Vec3 t2 = X(f.i, std::min(f.j + 1, fny)) - X(f.i, std::max(f.j - 1, 0));
+    const Vec3 n = t2.cross(t1).unit();
+    const auto hit = load.obstacle->cast(here, n, reach);
+    if (!hit) {
+      f.normal = {0, 0, 1};
+      f.g = -INFINITY;
+      continue;
+    }
+    f.normal = !load.facet_normals      ? hit->normal
+               : load.facet_band > 0 ? load.obstacle->banded_facet_normal(hit->point, load.facet_band)
+                                     : load.obstacle->normal(hit->point.x, hit->point.y);
+    f.g = f.normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q, N the constraint normal
+  }
+  VecRestoreArrayRead(face_u, &fu);
+}
+
+double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s) const {
+  const int fnx = face_nx();
+  std::fill(s.q_mine.begin(), s.q_mine.end(), 0.0);
+  for (const FaceNode& f : face) {
+    const auto q = frame_of(f.normal);
+    std::copy(q.begin(), q.end(), s.q_mine.begin() + 9 * (std::size_t(f.j) * (fnx + 1) + std::size_t(f.i)));
+  }
+  MPI_Allreduce(s.q_mine.data(), s.q_all.data(), int(s.q_all.size()), MPI_DOUBLE, MPI_SUM, comm);
+  rotate_matrix(s.khat, s.q_all);
+  check(MatGetDiagonal(s.khat, s.diag), "MatGetDiagonal");
+  check(VecCopy(u, s.uh), "VecCopy");
+  rotate_vector(s.uh, s.q_all, true);
+  // Eliminated rows get a diagonal of the matrix's own scale, so that AMG smoothers see no
+  // stray unit entries among stiffnesses of order E h.
+  PetscScalar diag_sum;
+  PetscInt diag_n;
+  VecSum(s.diag, &diag_sum);
+  VecGetSize(s.diag, &diag_n);
+  return diag_sum / double(diag_n);
+}
+
+ElasticBlock::Impl::ActiveSetOutcome ElasticBlock::Impl::solve_active_set(const std::vector<FaceNode>& face,
+                                                                          const TopBoundary& top, LinearSystems& s,
+                                                                          const ActiveSetControl& control,
+                                                                          ContactSolution& out) {
+  const PetscInt rstart = 3 * PetscInt(own_begin);
+  ActiveSetOutcome res;
+  {
     const PetscScalar* a;
-    VecGetArrayRead(v, &a);
-    const double pen = local_face_gaps(a)[1];
-    VecRestoreArrayRead(v, &a);
-    double pen_g = 0;
-    MPI_Allreduce(&pen, &pen_g, 1, MPI_DOUBLE, MPI_MAX, m.comm);
-    return pen_g;
-  };
+    VecGetArrayRead(s.uh, &a);
+    for (std::size_t n = 0; n < face.size(); ++n)
+      if (std::isfinite(face[n].g) && a[face[n].row[2] - rstart] <= face[n].g) active[n] = 1;
+      else if (!std::isfinite(face[n].g)) active[n] = 0;
+    VecRestoreArrayRead(s.uh, &a);
+  }
+  for (int it = 0; it < control.max_iterations; ++it) {
+    ++out.active_set_iterations;
+    std::vector<PetscInt> rows = top.fixed_rows;
+    std::vector<double> vals = top.fixed_vals;
+    for (std::size_t n = 0; n < face.size(); ++n)
+      if (active[n]) {
+        rows.push_back(face[n].row[2]);
+        vals.push_back(face[n].g);
+      }
+    check(VecSetValues(s.uh, PetscInt(rows.size()), rows.data(), vals.data(), INSERT_VALUES), "VecSetValues");
+    check(VecAssemblyBegin(s.uh), "VecAssemblyBegin");
+    check(VecAssemblyEnd(s.uh), "VecAssemblyEnd");
+    check(MatCopy(s.khat, s.a, SAME_NONZERO_PATTERN), "MatCopy");
+    check(VecSet(s.b, 0.0), "VecSet");
+    check(MatZeroRowsColumns(s.a, PetscInt(rows.size()), rows.data(), control.unit_diag, s.uh, s.b),
+          "MatZeroRowsColumns");
+    check(KSPSetOperators(s.ksp, s.a, s.a), "KSPSetOperators");
+    PetscBool reused = PETSC_FALSE;
+    KSPGetReusePreconditioner(s.ksp, &reused);
+    if (reused) check(VecCopy(s.uh, s.ustar), "VecCopy");  // the start, in case the solve must be redone
+    check(KSPSolve(s.ksp, s.b, s.uh), "KSPSolve");
+    KSPConvergedReason reason;
+    PetscInt its;
+    KSPGetConvergedReason(s.ksp, &reason);
+    KSPGetIterationNumber(s.ksp, &its);
+    out.linear_iterations += int(its);
+    if (reason < 0 && reused) {
+      // A hierarchy kept from an earlier system can stop being a good (or even positive
+      // definite, with its Chebyshev bounds) preconditioner for this one: rebuild and redo.
+      check(KSPSetReusePreconditioner(s.ksp, PETSC_FALSE), "KSPSetReusePreconditioner");
+      check(VecCopy(s.ustar, s.uh), "VecCopy");
+      check(KSPSolve(s.ksp, s.b, s.uh), "KSPSolve");
+      KSPGetConvergedReason(s.ksp, &reason);
+      KSPGetIterationNumber(s.ksp, &its);
+      out.linear_iterations += int(its);
+      s.first_its = int(its);
+      ++out.preconditioner_rebuilds;
+    }
+    if (control.loose && it == 0) set_convergence_test(s.ksp, 0.0);
+    // Keep the AMG hierarchy of the first system for the later ones of this load step (the
+    // systems differ only by rotations and eliminated rows); rebuild it when CG slows down.
+    if (control.reuse_preconditioner) {
+      if (s.first_its < 0) s.first_its = int(its);
+      const bool slow = s.first_its >= 0 && its > 3 * std::max(s.first_its, 10);
+      check(KSPSetReusePreconditioner(s.ksp, slow ? PETSC_FALSE : PETSC_TRUE), "KSPSetReusePreconditioner");
+      if (slow) s.first_its = -1;
+    }
+    if (reason < 0) {
+      out.message = "linear solve failed (KSP reason " + std::to_string(int(reason)) + ") in Signorini iteration " +
+                    std::to_string(out.outer_iterations);
+      return res;
+    }
+    check(MatMult(s.khat, s.uh, s.r), "MatMult");  // reactions in the rotated frames
+    const PetscScalar *ra, *ua, *da;
+    VecGetArrayRead(s.r, &ra);
+    VecGetArrayRead(s.uh, &ua);
+    VecGetArrayRead(s.diag, &da);
+    int changed = 0;
+    res.contact = 0;
+    for (std::size_t n = 0; n < face.size(); ++n) {
+      if (!std::isfinite(face[n].g)) continue;
+      const PetscInt l = face[n].row[2] - rstart;
+      const bool now = ra[l] + da[l] * (face[n].g - ua[l]) > 0;
+      changed |= now != bool(active[n]);
+      active[n] = now;
+      res.contact += now;
+    }
+    VecRestoreArrayRead(s.r, &ra);
+    VecRestoreArrayRead(s.uh, &ua);
+    VecRestoreArrayRead(s.diag, &da);
+    int any = 0;
+    MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, comm);
+    if (!any) {
+      res.ok = res.settled = true;
+      return res;
+    }
+    if (control.accept_unsettled && it + 1 == control.max_iterations) res.ok = true;  // the next Signorini iteration goes on
+  }
+  return res;
+}
+
+ElasticBlock::Impl::Correction ElasticBlock::Impl::measure_correction(const std::vector<FaceNode>& face, Vec ustar,
+                                                                      std::vector<double>& prev_corr) const {
+  const PetscInt rstart = 3 * PetscInt(own_begin);
+  const PetscScalar *us, *uc;
+  VecGetArrayRead(ustar, &us);
+  VecGetArrayRead(u, &uc);
+  // {|c|^2, c.c_prev, |c_prev|^2, |u*|^2} over the face, c = u* - u.
+  double sums[4] = {0, 0, 0, 0}, g[4];
+  for (std::size_t n = 0; n < face.size(); ++n)
+    for (int c = 0; c < 3; ++c) {
+      const PetscInt l = face[n].row[c] - rstart;
+      const double corr = us[l] - uc[l];
+      sums[0] += corr * corr;
+      sums[1] += corr * prev_corr[3 * n + c];
+      sums[2] += prev_corr[3 * n + c] * prev_corr[3 * n + c];
+      sums[3] += us[l] * us[l];
+      prev_corr[3 * n + c] = corr;
+    }
+  VecRestoreArrayRead(ustar, &us);
+  VecRestoreArrayRead(u, &uc);
+  MPI_Allreduce(sums, g, 4, MPI_DOUBLE, MPI_SUM, comm);
+  Correction c;
+  c.change = g[3] > 0 ? std::sqrt(g[0] / g[3]) : 0.0;
+  c.cosine = g[2] > 0 ? g[1] / std::sqrt(g[0] * g[2]) : NAN;
+  return c;
+}
+
+std::array<double, 2> ElasticBlock::Impl::face_gaps(const std::vector<FaceNode>& face, const PetscScalar* a,
+                                                    const ContactLoad& load) const {
+  const PetscInt rstart = 3 * PetscInt(own_begin);
+  double sep = 0, pen = 0;
+  for (const FaceNode& f : face) {
+    const Vec3 p{f.x0.x + a[f.row[0] - rstart], f.x0.y + a[f.row[1] - rstart], a[f.row[2] - rstart]};
+    const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
+    sep += std::max(0.0, p.z - h);
+    pen = std::max(pen, h - p.z);
+  }
+  return {sep, pen};
+}
+
+double ElasticBlock::Impl::deepest_penetration(const std::vector<FaceNode>& face, Vec v, const ContactLoad& load) const {
+  const PetscScalar* a;
+  VecGetArrayRead(v, &a);
+  const double pen = face_gaps(face, a, load)[1];
+  VecRestoreArrayRead(v, &a);
+  double pen_g = 0;
+  MPI_Allreduce(&pen, &pen_g, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return pen_g;
+}
+
+std::array<double, 2> ElasticBlock::Impl::top_forces(Vec v, const TopBoundary& top, Vec work) const {
+  const PetscInt rstart = 3 * PetscInt(own_begin);
+  check(MatMult(K, v, work), "MatMult");
+  const PetscScalar* ra;
+  VecGetArrayRead(work, &ra);
+  double f[2] = {0, 0}, fg[2];
+  for (PetscInt row : top.top_rows[0]) f[0] += ra[row - rstart];
+  for (PetscInt row : top.top_rows[2]) f[1] -= ra[row - rstart];
+  VecRestoreArrayRead(work, &ra);
+  MPI_Allreduce(f, fg, 2, MPI_DOUBLE, MPI_SUM, comm);
+  return {fg[0], fg[1]};
+}
+
+void ElasticBlock::Impl::output_results(const std::vector<FaceNode>& face, const TopBoundary& top,
+                                        const std::vector<double>& normal_force, const ContactLoad& load, Vec work,
+                                        ContactSolution& out) const {
+  const GradedMesh& g = *mesh;
+  const int fnx = face_nx(), fny = face_ny();
+  const PetscInt rstart = 3 * PetscInt(own_begin);
+  check(MatMult(K, u, work), "MatMult");
+  const PetscScalar *rr, *uu;
+  VecGetArrayRead(work, &rr);
+  VecGetArrayRead(u, &uu);
+  double fz = 0, fx = 0, fy = 0;
+  for (PetscInt row : top.top_rows[0]) fx += rr[row - rstart];
+  for (PetscInt row : top.top_rows[1]) fy += rr[row - rstart];
+  for (PetscInt row : top.top_rows[2]) fz -= rr[row - rstart];
+  const auto [sep, pen] = face_gaps(face, uu, load);
+  if (load.face_maps) {
+    const std::size_t nfx = std::size_t(fnx + 1), nf = nfx * std::size_t(fny + 1);
+    std::vector<double> local(3 * nf, 0.0);
+    for (std::size_t n = 0; n < face.size(); ++n) {
+      const FaceNode& f = face[n];
+      const std::size_t idx = std::size_t(f.j) * nfx + std::size_t(f.i);
+      // Nodal area: a quarter cell per adjacent cell.
+      const double wx = (f.i == 0 || f.i == fnx) ? 0.5 : 1.0, wy = (f.j == 0 || f.j == fny) ? 0.5 : 1.0;
+      local[idx] = normal_force[n] / (wx * wy * g.hx(0) * g.hy(0));
+      const Vec3 p{f.x0.x + uu[f.row[0] - rstart], f.x0.y + uu[f.row[1] - rstart], uu[f.row[2] - rstart]};
+      local[nf + idx] = p.z - (load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0);
+      local[2 * nf + idx] = active[n] ? 1.0 : 0.0;
+    }
+    std::vector<double> global(3 * nf, 0.0);
+    MPI_Reduce(local.data(), global.data(), int(3 * nf), MPI_DOUBLE, MPI_SUM, 0, comm);
+    out.face_pressure.assign(global.begin(), global.begin() + nf);
+    out.face_gap.assign(global.begin() + nf, global.begin() + 2 * nf);
+    out.face_status.assign(global.begin() + 2 * nf, global.end());
+  }
+  VecRestoreArrayRead(work, &rr);
+  VecRestoreArrayRead(u, &uu);
+  double loc[5] = {fx, fy, fz, sep, 0}, glob[5];
+  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, comm);
+  out.fx = glob[0];
+  out.fy = glob[1];
+  out.fz = glob[2];
+  out.mean_separation = glob[3] / double(out.face_nodes);
+}
+
+FaceModeExtrapolation::Modes ElasticBlock::Impl::face_mode_coordinates(const std::vector<FaceNode>& face,
+                                                                       const FaceModeBasis& basis) const {
+  constexpr int kModes = FaceModeExtrapolation::kModes;
+  const PetscInt rstart = 3 * PetscInt(own_begin);
+  const PetscScalar* a;
+  VecGetArrayRead(u, &a);
+  double s[2 * kModes] = {}, sg[2 * kModes];
+  for (const FaceNode& f : face)
+    for (int k = 0; k < kModes; ++k) {
+      const auto phi = basis.shape(f.x0.x, f.x0.y, k);
+      s[k] += phi[0] * a[f.row[0] - rstart] + phi[1] * a[f.row[1] - rstart];
+      s[kModes + k] += phi[0] * phi[0] + phi[1] * phi[1];
+    }
+  VecRestoreArrayRead(u, &a);
+  MPI_Allreduce(s, sg, 2 * kModes, MPI_DOUBLE, MPI_SUM, comm);
+  FaceModeExtrapolation::Modes c;
+  for (int k = 0; k < kModes; ++k) c[k] = sg[k] / sg[kModes + k];
+  return c;
+}
+
+void ElasticBlock::Impl::add_face_modes(const FaceModeBasis& basis, const FaceModeExtrapolation::Modes& c) {
+  const GradedMesh& g = *mesh;
+  const PetscInt rstart = 3 * PetscInt(own_begin);
+  const auto& planes = g.planes();
+  const double z0 = planes.front().z, lz = planes.back().z - z0;
+  PetscScalar* a;
+  VecGetArray(u, &a);
+  for (std::size_t p = 0; p < planes.size(); ++p) {
+    const double w = 1 - (planes[p].z - z0) / lz;  // 1 on the face, 0 on the fixed top
+    const int nxp = g.cells_x(planes[p].level), nyp = g.cells_y(planes[p].level);
+    for (int j = 0; j <= nyp; ++j)
+      for (int i = 0; i <= nxp; ++i) {
+        const std::int32_t id = planes[p].id[std::size_t(j) * (nxp + 1) + i];
+        if (id < 0 || !owns(id)) continue;
+        const Vec3 x = g.position(int(p), i, j);
+        for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) {
+          const auto phi = basis.shape(x.x, x.y, k);
+          a[dof(id, 0) - rstart] += w * c[k] * phi[0];
+          a[dof(id, 1) - rstart] += w * c[k] * phi[1];
+        }
+      }
+  }
+  VecRestoreArray(u, &a);
+}
+
+ContactSolution ElasticBlock::solve(const ContactLoad& load) {
+  Impl& m = *impl_;
+  ContactSolution out;
+  out.face_nodes = std::size_t(m.face_nx() + 1) * (m.face_ny() + 1);
+  std::vector<FaceNode> face = m.owned_face_nodes();
+  if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
+  const Impl::TopBoundary top = m.prescribe_top(load);
+  Impl::LinearSystems s(m.comm, m.K, m.u, out.face_nodes);
+
+  // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
+  // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led
+  // a shear step to a state 1.4x deeper in the obstacle than allowed. Blend normals only.
+  const bool smooth_map = load.follow_geometry && load.obstacle && !load.facet_normals;
+  SlowModeExtrapolation extrapolation(m.u, smooth_map ? load.extrapolate_every : 0);
+  // The face's in-plane rigid modes under a fixed top (FaceModeExtrapolation).
+  const bool modes_on = smooth_map && load.top == TopCondition::fixed && load.face_mode_extrapolation;
+  FaceModeExtrapolation face_extrapolation(modes_on ? load.extrapolate_every : 0);
+  const FaceModeBasis basis(*m.mesh, m.spec.mesh.lx, m.spec.mesh.ly, m.face_nx(), m.face_ny(), modes_on);
+
   constexpr int kPenetrationRetries = 3;
   constexpr double kLeastReduction = 0.1;  // of a loose linearisation's first CG residual
+  // A slow-mode jump is undone when the linearisation at the jumped iterate loses more than
+  // this fraction of the contact nodes. Why: the creep moves the face along the obstacle and
+  // barely changes the contact set (jumps that paid off lost 0.6-1.7 % of it on the 50 x 50 and
+  // 300 x 300 scenes), while jumps that overshot into the fast modes opened it (300 x 300:
+  // 98k -> 78k and 197k -> 133k nodes, each followed by many iterations of recovery).
+  constexpr double kMaxContactLoss = 0.1;
+  std::size_t contact_before_jump = 0;  // > 0: the last iteration jumped
   int penetration_retries = 0;
-  const double reach = std::max(m.spec.mesh.lz, 1e-12);  // rays look this far for the obstacle
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
-  double alpha_now = load.damping;
-  double alpha_cap = load.damping;  // lowered while the iteration stagnates (chattering nodes)
-  int last_cap_cut = 0;
+  AdaptiveDamping damping(load.damping);
   std::vector<double> normal_force(face.size(), 0.0);  // N, per face node, last linearisation
-  int first_its = -1;  // CG iterations with a fresh preconditioner
   std::vector<double> prev_corr(3 * face.size(), 0.0);
   bool final_pass = false;
   double loose_factor = 0.01;  // CG rtol of a loose solve = loose_factor x smallest_change
@@ -638,63 +959,12 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     out.outer_iterations = outer + 1;
     // 1. Linearise the contact at the current configuration.
     double t_phase = MPI_Wtime();
-    m.gather_face();
-    const PetscScalar* fu;
-    check(VecGetArrayRead(m.face_u, &fu), "VecGetArrayRead");
-    auto X = [&](int i, int j) {
-      const std::size_t k = 3 * (std::size_t(j) * (fnx + 1) + i);
-      return g.position(0, i, j) + Vec3{fu[k], fu[k + 1], fu[k + 2]};
-    };
-    for (FaceNode& f : face) {
-      if (!load.obstacle) {
-        f.normal = {0, 0, 1};
-        f.g = 0.0;
-        continue;
-      }
-      if (!load.follow_geometry) {
-        f.normal = {0, 0, 1};
-        f.g = load.obstacle->height(f.x0.x, f.x0.y);
-        continue;
-      }
-      const Vec3 here = X(f.i, f.j);
-      // Outward normal of the deformed face (pointing down), from the neighbours' positions.
-      const Vec3 t1 = X(std::min(f.i + 1, fnx), f.j) - X(std::max(f.i - 1, 0), f.j);
-      const Vec3 t2 = X(f.i, std::min(f.j + 1, fny)) - X(f.i, std::max(f.j - 1, 0));
-      const Vec3 n = t2.cross(t1).unit();
-      const auto hit = load.obstacle->cast(here, n, reach);
-      if (!hit) {
-        f.normal = {0, 0, 1};
-        f.g = -INFINITY;
-        continue;
-      }
-      f.normal = !load.facet_normals      ? hit->normal
-                 : load.facet_band > 0 ? load.obstacle->banded_facet_normal(hit->point, load.facet_band)
-                                       : load.obstacle->normal(hit->point.x, hit->point.y);
-      f.g = f.normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q, N the constraint normal
-    }
-    VecRestoreArrayRead(m.face_u, &fu);
+    m.linearise(face, load);
     out.wall_linearise += MPI_Wtime() - t_phase;
     t_phase = MPI_Wtime();
 
     // 2. Rotate the face nodes into their constraint frames: Khat = R^T K R, uh = R^T u.
-    std::fill(q_mine.begin(), q_mine.end(), 0.0);
-    for (const FaceNode& f : face) {
-      const auto q = frame_of(f.normal);
-      std::copy(q.begin(), q.end(), q_mine.begin() + 9 * (std::size_t(f.j) * (fnx + 1) + std::size_t(f.i)));
-    }
-    MPI_Allreduce(q_mine.data(), q_all.data(), int(q_all.size()), MPI_DOUBLE, MPI_SUM, m.comm);
-    m.rotate_matrix(Khat, q_all);
-    check(MatGetDiagonal(Khat, diag), "MatGetDiagonal");
-    // Eliminated rows get a diagonal of the matrix's own scale, so that AMG smoothers see no
-    // stray unit entries among stiffnesses of order E h.
-    PetscScalar diag_sum;
-    PetscInt diag_n;
-    VecSum(diag, &diag_sum);
-    VecGetSize(diag, &diag_n);
-    const double unit_diag = diag_sum / double(diag_n);
-    check(VecCopy(m.u, uh), "VecCopy");
-    m.rotate_vector(uh, q_all, true);
-
+    const double unit_diag = m.rotate_into_frames(face, s);
     out.wall_rotate += MPI_Wtime() - t_phase;
     t_phase = MPI_Wtime();
 
@@ -710,192 +980,71 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     double rtol = load.ksp_rtol;
     if (load.inexact && load.follow_geometry && load.obstacle && !final_pass)
       rtol = std::clamp(out.history.empty() ? 1e-3 : loose_factor * smallest_change, load.ksp_rtol, 1e-3);
-    check(KSPSetTolerances(ksp, rtol, 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
+    check(KSPSetTolerances(s.ksp, rtol, 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
+    Impl::ActiveSetControl control;
+    control.unit_diag = unit_diag;
     // The first system of a loose linearisation must at least cut its residual tenfold (see
     // LeastReductionTest); the active-set corrections after it start close to their answer.
-    const bool loose = rtol > load.ksp_rtol;
-    if (loose) set_convergence_test(ksp, kLeastReduction);
-    bool pdas_ok = false;
-    std::size_t contact = 0;
-    {
-      const PetscScalar* a;
-      VecGetArrayRead(uh, &a);
-      for (std::size_t n = 0; n < face.size(); ++n)
-        if (std::isfinite(face[n].g) && a[face[n].row[2] - rstart] <= face[n].g) m.active[n] = 1;
-        else if (!std::isfinite(face[n].g)) m.active[n] = 0;
-      VecRestoreArrayRead(uh, &a);
-    }
-    const bool early = load.follow_geometry && load.obstacle && !final_pass;
-    const int pdas_cap = early ? std::min(load.early_active_set_iterations, load.max_active_set_iterations)
-                               : load.max_active_set_iterations;
-    bool settled = false;
-    for (int it = 0; it < pdas_cap; ++it) {
-      ++out.active_set_iterations;
-      std::vector<PetscInt> rows = fixed_rows;
-      std::vector<double> vals = fixed_vals;
-      for (std::size_t n = 0; n < face.size(); ++n)
-        if (m.active[n]) {
-          rows.push_back(face[n].row[2]);
-          vals.push_back(face[n].g);
-        }
-      check(VecSetValues(uh, PetscInt(rows.size()), rows.data(), vals.data(), INSERT_VALUES), "VecSetValues");
-      check(VecAssemblyBegin(uh), "VecAssemblyBegin");
-      check(VecAssemblyEnd(uh), "VecAssemblyEnd");
-      check(MatCopy(Khat, A, SAME_NONZERO_PATTERN), "MatCopy");
-      check(VecSet(b, 0.0), "VecSet");
-      check(MatZeroRowsColumns(A, PetscInt(rows.size()), rows.data(), unit_diag, uh, b), "MatZeroRowsColumns");
-      check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
-      PetscBool reused = PETSC_FALSE;
-      KSPGetReusePreconditioner(ksp, &reused);
-      if (reused) check(VecCopy(uh, ustar), "VecCopy");  // the start, in case the solve must be redone
-      check(KSPSolve(ksp, b, uh), "KSPSolve");
-      KSPConvergedReason reason;
-      PetscInt its;
-      KSPGetConvergedReason(ksp, &reason);
-      KSPGetIterationNumber(ksp, &its);
-      out.linear_iterations += int(its);
-      if (reason < 0 && reused) {
-        // A hierarchy kept from an earlier system can stop being a good (or even positive
-        // definite, with its Chebyshev bounds) preconditioner for this one: rebuild and redo.
-        check(KSPSetReusePreconditioner(ksp, PETSC_FALSE), "KSPSetReusePreconditioner");
-        check(VecCopy(ustar, uh), "VecCopy");
-        check(KSPSolve(ksp, b, uh), "KSPSolve");
-        KSPGetConvergedReason(ksp, &reason);
-        KSPGetIterationNumber(ksp, &its);
-        out.linear_iterations += int(its);
-        first_its = int(its);
-        ++out.preconditioner_rebuilds;
-      }
-      if (loose && it == 0) set_convergence_test(ksp, 0.0);
-      // Keep the AMG hierarchy of the first system for the later ones of this load step (the
-      // systems differ only by rotations and eliminated rows); rebuild it when CG slows down.
-      if (load.reuse_preconditioner) {
-        if (first_its < 0) first_its = int(its);
-        const bool slow = first_its >= 0 && its > 3 * std::max(first_its, 10);
-        check(KSPSetReusePreconditioner(ksp, slow ? PETSC_FALSE : PETSC_TRUE), "KSPSetReusePreconditioner");
-        if (slow) first_its = -1;
-      }
-      if (reason < 0) {
-        out.message = "linear solve failed (KSP reason " + std::to_string(int(reason)) + ") in Signorini iteration " +
-                      std::to_string(outer + 1);
-        break;
-      }
-      check(MatMult(Khat, uh, r), "MatMult");  // reactions in the rotated frames
-      const PetscScalar *ra, *ua, *da;
-      VecGetArrayRead(r, &ra);
-      VecGetArrayRead(uh, &ua);
-      VecGetArrayRead(diag, &da);
-      int changed = 0;
-      contact = 0;
-      for (std::size_t n = 0; n < face.size(); ++n) {
-        if (!std::isfinite(face[n].g)) continue;
-        const PetscInt l = face[n].row[2] - rstart;
-        const bool now = ra[l] + da[l] * (face[n].g - ua[l]) > 0;
-        changed |= now != bool(m.active[n]);
-        m.active[n] = now;
-        contact += now;
-      }
-      VecRestoreArrayRead(r, &ra);
-      VecRestoreArrayRead(uh, &ua);
-      VecRestoreArrayRead(diag, &da);
-      int any = 0;
-      MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, m.comm);
-      if (!any) {
-        pdas_ok = settled = true;
-        break;
-      }
-      if (early && it + 1 == pdas_cap) pdas_ok = true;  // the next Signorini iteration goes on
-    }
-    if (!pdas_ok) {
+    control.loose = rtol > load.ksp_rtol;
+    if (control.loose) set_convergence_test(s.ksp, kLeastReduction);
+    control.accept_unsettled = load.follow_geometry && load.obstacle && !final_pass;
+    control.max_iterations = control.accept_unsettled
+                                 ? std::min(load.early_active_set_iterations, load.max_active_set_iterations)
+                                 : load.max_active_set_iterations;
+    control.reuse_preconditioner = load.reuse_preconditioner;
+    const Impl::ActiveSetOutcome as = m.solve_active_set(face, top, s, control, out);
+    if (!as.ok) {
       if (out.message.empty())
         out.message = "active set still changing after " + std::to_string(load.max_active_set_iterations) +
                       " iterations in Signorini iteration " + std::to_string(outer + 1);
       break;
     }
-    double ct = double(contact), ctot;
+    double ct = double(as.contact), ctot;
     MPI_Allreduce(&ct, &ctot, 1, MPI_DOUBLE, MPI_SUM, m.comm);
     out.contact_nodes = std::size_t(ctot);
+    out.wall_solve += MPI_Wtime() - t_phase;
+    const std::size_t contact_then = std::exchange(contact_before_jump, 0);
+    if (contact_then > 0 && double(out.contact_nodes) < (1 - kMaxContactLoss) * double(contact_then)) {
+      check(VecCopy(s.before_jump, m.u), "VecCopy");
+      extrapolation.restart(m.u);
+      if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));
+      ++out.rejected_jumps;
+      if (load.trace && m.rank == 0)
+        std::fprintf(stderr, "    slow-mode jump undone: %zu of %zu contact nodes left\n", out.contact_nodes,
+                     contact_then);
+      continue;  // re-linearise where the jump started
+    }
     {
       const PetscScalar* ra;
-      VecGetArrayRead(r, &ra);
+      VecGetArrayRead(s.r, &ra);
       for (std::size_t n = 0; n < face.size(); ++n)
-        normal_force[n] = m.active[n] ? ra[face[n].row[2] - rstart] : 0.0;
-      VecRestoreArrayRead(r, &ra);
+        normal_force[n] = m.active[n] ? ra[face[n].row[2] - 3 * PetscInt(m.own_begin)] : 0.0;
+      VecRestoreArrayRead(s.r, &ra);
     }
 
-    out.wall_solve += MPI_Wtime() - t_phase;
-
-    // 4. Next iterate: a damped step towards the linearised solution u*.
-    check(VecCopy(uh, ustar), "VecCopy");
-    m.rotate_vector(ustar, q_all, false);
-    const PetscScalar* us;
-    PetscScalar* uc;
-    VecGetArrayRead(ustar, &us);
-    VecGetArray(m.u, &uc);
-    // Convergence measure: the correction u* - u on the contact face relative to u* there
-    // (the l2 norm over the face nodes = the lumped boundary mass norm on the uniform face).
-    double face_sq[2] = {0, 0}, face_sq_g[2];
-    for (const FaceNode& f : face)
-      for (int c = 0; c < 3; ++c) {
-        const PetscInt l = f.row[c] - rstart;
-        face_sq[0] += (us[l] - uc[l]) * (us[l] - uc[l]);
-        face_sq[1] += us[l] * us[l];
-      }
-    MPI_Allreduce(face_sq, face_sq_g, 2, MPI_DOUBLE, MPI_SUM, m.comm);
-    const double change = face_sq_g[1] > 0 ? std::sqrt(face_sq_g[0] / face_sq_g[1]) : 0.0;
-    // Damping: halved when the correction reverses (a node chattering between two contact
-    // states across a kink of the obstacle), restored while corrections keep their direction.
-    double cc = 0, cp = 0, pp = 0;
-    for (std::size_t n = 0; n < face.size(); ++n)
-      for (int c = 0; c < 3; ++c) {
-        const PetscInt l = face[n].row[c] - rstart;
-        const double corr = us[l] - uc[l];
-        cc += corr * corr;
-        cp += corr * prev_corr[3 * n + c];
-        pp += prev_corr[3 * n + c] * prev_corr[3 * n + c];
-        prev_corr[3 * n + c] = corr;
-      }
-    double dots[3] = {cc, cp, pp}, gdots[3];
-    MPI_Allreduce(dots, gdots, 3, MPI_DOUBLE, MPI_SUM, m.comm);
-    if (load.follow_geometry && gdots[2] > 0) {
-      const double cosine = gdots[1] / std::sqrt(gdots[0] * gdots[2]);
-      if (cosine < -0.3)
-        alpha_now = std::max(0.5 * alpha_now, 0.01);
-      else if (cosine > 0.7)
-        alpha_now = std::min(1.5 * alpha_now, alpha_cap);
-    }
-    // Stagnation: nodes on kinks of the obstacle can chatter for ever (the linearised map is
-    // discontinuous there), the change then stalls. Halve the damping ceiling each time the best
-    // change of the last `window` iterations is not half the best of the window before: the
-    // iterates then average the chatter out (a Krasnoselskii-Mann step), and convergence is
-    // judged on the capped step alpha_cap x change. The penetration check of the caller guards
-    // against stopping on a small alpha alone.
+    // 4. Next iterate: a damped step towards the linearised solution u*. Convergence measure:
+    // the correction u* - u on the contact face relative to u* there (the l2 norm over the face
+    // nodes = the lumped boundary mass norm on the uniform face).
+    check(VecCopy(s.uh, s.ustar), "VecCopy");
+    m.rotate_vector(s.ustar, s.q_all, false);
+    const Impl::Correction corr = m.measure_correction(face, s.ustar, prev_corr);
+    const double change = corr.change;
+    if (load.follow_geometry) damping.after_correction(corr.cosine);
     out.history.push_back(change);
     smallest_change = std::min(smallest_change, change);
-    const int window = 15, k = int(out.history.size());
-    if (load.follow_geometry && k >= 2 * window && k - last_cap_cut >= 2 * window) {
-      const auto h = out.history.end();
-      const double recent = *std::min_element(h - window, h), before = *std::min_element(h - 2 * window, h - window);
-      if (recent > 0.5 * before && alpha_cap > 0.05) {
-        alpha_cap = std::max(0.5 * alpha_cap, 0.05);
-        alpha_now = std::min(alpha_now, alpha_cap);
-        last_cap_cut = k;
-      }
-    }
-    const double alpha = load.follow_geometry ? alpha_now : 1.0;
-    const double step_change = alpha_cap < load.damping ? alpha_cap * change : change;
-    VecRestoreArrayRead(ustar, &us);
-    VecRestoreArray(m.u, &uc);
+    if (load.follow_geometry) damping.after_change(out.history);
+    const double alpha = load.follow_geometry ? damping.alpha() : 1.0;
+    const double step_change = damping.step_change(change);
     check(VecScale(m.u, 1 - alpha), "VecScale");
-    check(VecAXPY(m.u, alpha, ustar), "VecAXPY");
-    const auto forces = top_forces(ustar);
+    check(VecAXPY(m.u, alpha, s.ustar), "VecAXPY");
+    const auto forces = m.top_forces(s.ustar, top, s.r);
     const double trace_fx = forces[0], trace_fz = forces[1];
     out.mu_history.push_back(trace_fz > 0 ? trace_fx / trace_fz : 0.0);
     out.damping_history.push_back(alpha);
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
                    "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  [%.1f s]\n",
-                   outer + 1, change, alpha, out.contact_nodes, settled ? "" : "+", out.active_set_iterations,
+                   outer + 1, change, alpha, out.contact_nodes, as.settled ? "" : "+", out.active_set_iterations,
                    out.linear_iterations, rtol, trace_fz, trace_fx, MPI_Wtime() - t_solve_start);
     if (!load.trace && load.progress_every_s > 0 && m.rank == 0 &&
         MPI_Wtime() - last_progress >= load.progress_every_s) {
@@ -904,16 +1053,22 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
                    outer + 1, step_change, load.tolerance, alpha, out.contact_nodes, last_progress - t_solve_start);
     }
     out.final_damping = alpha;
+
+    // 5. Slow-mode jumps (judged by the next linearisation, above); then the convergence test
+    // of Algorithm 1, with its confirmations.
+    if (smooth_map) check(VecCopy(m.u, s.before_jump), "VecCopy");
     if (const double jump = extrapolation.after_iteration(m.u); jump > 0) {
+      contact_before_jump = out.contact_nodes;
       out.extrapolations = extrapolation.jumps() + face_extrapolation.jumps();
       if (load.trace && m.rank == 0) std::fprintf(stderr, "    slow-mode extrapolation: factor %.2f\n", jump);
-      if (modes_on) face_extrapolation.restart(face_modes());
+      if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));
       continue;  // the change measured before the jump says nothing about the new iterate
     }
     if (modes_on) {
-      const auto c = face_extrapolation.after_iteration(face_modes());
+      const auto c = face_extrapolation.after_iteration(m.face_mode_coordinates(face, basis));
       if (std::any_of(c.begin(), c.end(), [](double v) { return v != 0; })) {
-        add_face_modes(c);
+        m.add_face_modes(basis, c);
+        contact_before_jump = out.contact_nodes;
         extrapolation.restart(m.u);
         out.extrapolations = extrapolation.jumps() + face_extrapolation.jumps();
         if (load.trace && m.rank == 0)
@@ -928,13 +1083,13 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       final_pass = false;
       loose_factor *= 0.1;
     }
-    if (step_change <= load.tolerance && (rtol > load.ksp_rtol || !settled) && !final_pass) {
+    if (step_change <= load.tolerance && (rtol > load.ksp_rtol || !as.settled) && !final_pass) {
       final_pass = true;  // converged on loose solves: confirm with one full solve at ksp_rtol
       continue;
     }
     if (load.follow_geometry && step_change <= load.tolerance && load.max_penetration > 0 &&
         penetration_retries < kPenetrationRetries &&
-        face_penetration(alpha_cap >= load.damping ? ustar : m.u) > load.max_penetration) {
+        m.deepest_penetration(face, damping.capped() ? m.u : s.ustar, load) > load.max_penetration) {
       // Small change, yet a node is inside the obstacle: the tolerance has not seen all that is
       // left (e.g. after a slow-mode jump). Go on, with ten times tighter loose solves.
       ++penetration_retries;
@@ -945,7 +1100,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     if (!load.follow_geometry || step_change <= load.tolerance) {
       // The undamped solution of the last linearisation; after a stagnation the averaged
       // iterate instead (u* still carries the chatter).
-      if (alpha_cap >= load.damping) check(VecCopy(ustar, m.u), "VecCopy");
+      if (!damping.capped()) check(VecCopy(s.ustar, m.u), "VecCopy");
       out.converged = true;
       break;
     }
@@ -953,54 +1108,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   if (!out.converged && out.message.empty())
     out.message = "Signorini iteration did not converge in " + std::to_string(load.max_outer_iterations) +
                   " iterations (last relative change " + (out.history.empty() ? "-" : std::to_string(out.history.back())) + ")";
-
-  // Reactions on the top face, separation and penetration of the face.
-  check(MatMult(m.K, m.u, r), "MatMult");
-  const PetscScalar *rr, *uu;
-  VecGetArrayRead(r, &rr);
-  VecGetArrayRead(m.u, &uu);
-  double fz = 0, fx = 0, fy = 0;
-  for (PetscInt row : top_rows[0]) fx += rr[row - rstart];
-  for (PetscInt row : top_rows[1]) fy += rr[row - rstart];
-  for (PetscInt row : top_rows[2]) fz -= rr[row - rstart];
-  const auto [sep, pen] = local_face_gaps(uu);
-  if (load.face_maps) {
-    const std::size_t nfx = std::size_t(fnx + 1), nf = nfx * std::size_t(fny + 1);
-    std::vector<double> local(3 * nf, 0.0);
-    for (std::size_t n = 0; n < face.size(); ++n) {
-      const FaceNode& f = face[n];
-      const std::size_t idx = std::size_t(f.j) * nfx + std::size_t(f.i);
-      // Nodal area: a quarter cell per adjacent cell.
-      const double wx = (f.i == 0 || f.i == fnx) ? 0.5 : 1.0, wy = (f.j == 0 || f.j == fny) ? 0.5 : 1.0;
-      local[idx] = normal_force[n] / (wx * wy * g.hx(0) * g.hy(0));
-      const Vec3 p{f.x0.x + uu[f.row[0] - rstart], f.x0.y + uu[f.row[1] - rstart], uu[f.row[2] - rstart]};
-      local[nf + idx] = p.z - (load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0);
-      local[2 * nf + idx] = m.active[n] ? 1.0 : 0.0;
-    }
-    std::vector<double> global(3 * nf, 0.0);
-    MPI_Reduce(local.data(), global.data(), int(3 * nf), MPI_DOUBLE, MPI_SUM, 0, m.comm);
-    out.face_pressure.assign(global.begin(), global.begin() + nf);
-    out.face_gap.assign(global.begin() + nf, global.begin() + 2 * nf);
-    out.face_status.assign(global.begin() + 2 * nf, global.end());
-  }
-  VecRestoreArrayRead(r, &rr);
-  VecRestoreArrayRead(m.u, &uu);
-  double loc[5] = {fx, fy, fz, sep, 0}, glob[5];
-  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_SUM, m.comm);
-  MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, m.comm);
-  out.fx = glob[0];
-  out.fy = glob[1];
-  out.fz = glob[2];
-  out.mean_separation = glob[3] / double(out.face_nodes);
-
-  KSPDestroy(&ksp);
-  MatDestroy(&A);
-  MatDestroy(&Khat);
-  VecDestroy(&uh);
-  VecDestroy(&b);
-  VecDestroy(&r);
-  VecDestroy(&diag);
-  VecDestroy(&ustar);
+  m.output_results(face, top, normal_force, load, s.r, out);
   return out;
 }
 

@@ -161,14 +161,6 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
 
 SpectralNormalContact::~SpectralNormalContact() = default;
 
-bool stagnated(const std::vector<double>& h, std::size_t window) {
-  if (window == 0 || h.size() < 2 * window) return false;
-  const auto end = h.end();
-  const double recent = *std::min_element(end - long(window), end);
-  const double before = *std::min_element(end - 2 * long(window), end - long(window));
-  return recent > 0.5 * before;
-}
-
 void SpectralNormalContact::set_heights(const std::vector<double>& heights) {
   Impl& m = *impl_;
   if (heights.size() != m.n) throw std::invalid_argument("set_heights: the grid changed");

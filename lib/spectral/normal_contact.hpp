@@ -28,13 +28,10 @@
 
 #include "lib/core/fft.hpp"
 #include "lib/core/height_map.hpp"
+#include "lib/core/stagnation.hpp"
 #include "lib/spectral/surface_compliance.hpp"
 
 namespace wr {
-
-// True when the best value of the last `window` entries of `history` is not below half the best
-// of the `window` before: a residual that no longer decreases (shared by the spectral solvers).
-bool stagnated(const std::vector<double>& history, std::size_t window);
 
 struct SpectralOptions {
   double tolerance = 1e-8;    // relative l1 change of the pressure per iteration
