@@ -448,8 +448,9 @@ struct ElasticBlock::Impl {
   std::array<double, 2> face_gaps(const std::vector<FaceNode>& face, const PetscScalar* a,
                                   const ContactLoad& load) const;
   double deepest_penetration(const std::vector<FaceNode>& face, Vec v, const ContactLoad& load) const;  // collective
-  // {Fx, Fz} on the top face for displacement v (Fz > 0 in compression); `work` is overwritten.
-  std::array<double, 2> top_forces(Vec v, const TopBoundary& top, Vec work) const;
+  // {Fx, Fy, Fz} on the top face for displacement v (Fz > 0 in compression); `work` is
+  // overwritten. Collective.
+  std::array<double, 3> top_forces(Vec v, const TopBoundary& top, Vec work) const;
   FaceModeExtrapolation::Modes face_mode_coordinates(const std::vector<FaceNode>& face,
                                                      const FaceModeBasis& basis) const;
   // Adds the modal displacement c through the block, fading linearly to the fixed top.
@@ -814,17 +815,19 @@ double ElasticBlock::Impl::deepest_penetration(const std::vector<FaceNode>& face
   return pen_g;
 }
 
-std::array<double, 2> ElasticBlock::Impl::top_forces(Vec v, const TopBoundary& top, Vec work) const {
+std::array<double, 3> ElasticBlock::Impl::top_forces(Vec v, const TopBoundary& top, Vec work) const {
   const PetscInt rstart = 3 * PetscInt(own_begin);
   check(MatMult(K, v, work), "MatMult");
   const PetscScalar* ra;
   VecGetArrayRead(work, &ra);
-  double f[2] = {0, 0}, fg[2];
+  double f[3] = {0, 0, 0};
+  std::array<double, 3> fg;
   for (PetscInt row : top.top_rows[0]) f[0] += ra[row - rstart];
-  for (PetscInt row : top.top_rows[2]) f[1] -= ra[row - rstart];
+  for (PetscInt row : top.top_rows[1]) f[1] += ra[row - rstart];
+  for (PetscInt row : top.top_rows[2]) f[2] -= ra[row - rstart];
   VecRestoreArrayRead(work, &ra);
-  MPI_Allreduce(f, fg, 2, MPI_DOUBLE, MPI_SUM, comm);
-  return {fg[0], fg[1]};
+  MPI_Allreduce(f, fg.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
+  return fg;
 }
 
 void ElasticBlock::Impl::output_results(const std::vector<FaceNode>& face, const TopBoundary& top,
@@ -833,14 +836,12 @@ void ElasticBlock::Impl::output_results(const std::vector<FaceNode>& face, const
   const GradedMesh& g = *mesh;
   const int fnx = face_nx(), fny = face_ny();
   const PetscInt rstart = 3 * PetscInt(own_begin);
-  check(MatMult(K, u, work), "MatMult");
-  const PetscScalar *rr, *uu;
-  VecGetArrayRead(work, &rr);
+  const auto forces = top_forces(u, top, work);
+  out.fx = forces[0];
+  out.fy = forces[1];
+  out.fz = forces[2];
+  const PetscScalar* uu;
   VecGetArrayRead(u, &uu);
-  double fz = 0, fx = 0, fy = 0;
-  for (PetscInt row : top.top_rows[0]) fx += rr[row - rstart];
-  for (PetscInt row : top.top_rows[1]) fy += rr[row - rstart];
-  for (PetscInt row : top.top_rows[2]) fz -= rr[row - rstart];
   const auto [sep, pen] = face_gaps(face, uu, load);
   if (load.face_maps) {
     const std::size_t nfx = std::size_t(fnx + 1), nf = nfx * std::size_t(fny + 1);
@@ -861,15 +862,11 @@ void ElasticBlock::Impl::output_results(const std::vector<FaceNode>& face, const
     out.face_gap.assign(global.begin() + nf, global.begin() + 2 * nf);
     out.face_status.assign(global.begin() + 2 * nf, global.end());
   }
-  VecRestoreArrayRead(work, &rr);
   VecRestoreArrayRead(u, &uu);
-  double loc[5] = {fx, fy, fz, sep, 0}, glob[5];
-  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_SUM, comm);
+  double sep_g = 0;
+  MPI_Allreduce(&sep, &sep_g, 1, MPI_DOUBLE, MPI_SUM, comm);
   MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, comm);
-  out.fx = glob[0];
-  out.fy = glob[1];
-  out.fz = glob[2];
-  out.mean_separation = glob[3] / double(out.face_nodes);
+  out.mean_separation = sep_g / double(out.face_nodes);
 }
 
 FaceModeExtrapolation::Modes ElasticBlock::Impl::face_mode_coordinates(const std::vector<FaceNode>& face,
@@ -1038,7 +1035,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     check(VecScale(m.u, 1 - alpha), "VecScale");
     check(VecAXPY(m.u, alpha, s.ustar), "VecAXPY");
     const auto forces = m.top_forces(s.ustar, top, s.r);
-    const double trace_fx = forces[0], trace_fz = forces[1];
+    const double trace_fx = forces[0], trace_fz = forces[2];
     out.mu_history.push_back(trace_fz > 0 ? trace_fx / trace_fz : 0.0);
     out.damping_history.push_back(alpha);
     if (load.trace && m.rank == 0)
