@@ -1053,8 +1053,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
 
     // 5. Slow-mode jumps (judged by the next linearisation, above); then the convergence test
     // of Algorithm 1, with its confirmations.
-    if (smooth_map) check(VecCopy(m.u, s.before_jump), "VecCopy");
-    if (const double jump = extrapolation.after_iteration(m.u); jump > 0) {
+    if (const double jump = extrapolation.after_iteration(m.u, s.before_jump); jump > 0) {
       contact_before_jump = out.contact_nodes;
       out.extrapolations = extrapolation.jumps() + face_extrapolation.jumps();
       if (load.trace && m.rank == 0) std::fprintf(stderr, "    slow-mode extrapolation: factor %.2f\n", jump);
@@ -1064,6 +1063,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     if (modes_on) {
       const auto c = face_extrapolation.after_iteration(m.face_mode_coordinates(face, basis));
       if (std::any_of(c.begin(), c.end(), [](double v) { return v != 0; })) {
+        check(VecCopy(m.u, s.before_jump), "VecCopy");
         m.add_face_modes(basis, c);
         contact_before_jump = out.contact_nodes;
         extrapolation.restart(m.u);

@@ -35,7 +35,7 @@ SlowModeExtrapolation::~SlowModeExtrapolation() {
   if (change_) VecDestroy(&change_);
 }
 
-double SlowModeExtrapolation::after_iteration(Vec u) {
+double SlowModeExtrapolation::after_iteration(Vec u, Vec before_jump) {
   if (!every_ || ++count_ % every_ != 0) return 0.0;
   check(VecWAXPY(change_, -1.0, start_, u), "VecWAXPY");  // this block's change
   double factor = 0.0;
@@ -47,6 +47,7 @@ double SlowModeExtrapolation::after_iteration(Vec u) {
     check(VecDot(change_, previous_, &dot), "VecDot");
     factor = aitken_jump_factor(now, before, dot);
     if (factor > 0) {
+      if (before_jump) check(VecCopy(u, before_jump), "VecCopy");
       check(VecAXPY(u, factor, change_), "VecAXPY");
       ++jumps_;
     }

@@ -41,8 +41,9 @@ class SlowModeExtrapolation {
   SlowModeExtrapolation& operator=(const SlowModeExtrapolation&) = delete;
 
   // Call once after every iteration with its new iterate `u` (collective). At the end of a
-  // block it may move `u` in place; returns the factor of that jump, 0 when none.
-  double after_iteration(Vec u);
+  // block it may move `u` in place; returns the factor of that jump, 0 when none. Before a
+  // jump, `u` is copied into `before_jump` (if given, same layout) so that the caller can undo it.
+  double after_iteration(Vec u, Vec before_jump = nullptr);
   // Another jump moved `u`: measure two fresh blocks from it (collective).
   void restart(Vec u);
   int jumps() const { return jumps_; }
@@ -66,7 +67,7 @@ class SlowModeExtrapolation {
 // linearly to the fixed top), and the next linearisation relaxes the rest.
 class FaceModeExtrapolation {
  public:
-  static constexpr int kModes = 4;  // slide x, slide y, dilatation, twist (face_modes in elastic_block.cpp)
+  static constexpr int kModes = 4;  // slide x, slide y, dilatation, twist (FaceModeBasis in elastic_block.cpp)
   using Modes = std::array<double, kModes>;
   explicit FaceModeExtrapolation(int every) : every_(every >= 2 ? every : 0) {}
   // Call after every iteration with the face's modal coordinates; returns the modal jump to
