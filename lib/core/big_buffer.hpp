@@ -27,5 +27,6 @@ struct BigBufferAllocator {
 };
 
 using BigVector = std::vector<double, BigBufferAllocator<double>>;
+using BigVectorSingle = std::vector<float, BigBufferAllocator<float>>;
 
 }  // namespace wr

@@ -27,34 +27,92 @@ std::string fft_wisdom_path() {
   return "";
 }
 
+template <>
+struct FftwApi<double> {
+  using Plan = fftw_plan;
+  using Complex = fftw_complex;
+  static constexpr const char* wisdom_suffix = "";
+  static void init_threads() { fftw_init_threads(); }
+  static void plan_with_nthreads(int n) { fftw_plan_with_nthreads(n); }
+  static Plan r2c_1d(int n, double* in, Complex* out, unsigned f) { return fftw_plan_dft_r2c_1d(n, in, out, f); }
+  static Plan c2r_1d(int n, Complex* in, double* out, unsigned f) { return fftw_plan_dft_c2r_1d(n, in, out, f); }
+  static Plan r2c_2d(int ny, int nx, double* in, Complex* out, unsigned f) {
+    return fftw_plan_dft_r2c_2d(ny, nx, in, out, f);
+  }
+  static Plan c2r_2d(int ny, int nx, Complex* in, double* out, unsigned f) {
+    return fftw_plan_dft_c2r_2d(ny, nx, in, out, f);
+  }
+  static void execute(Plan p) { fftw_execute(p); }
+  static void execute_r2c(Plan p, double* in, Complex* out) { fftw_execute_dft_r2c(p, in, out); }
+  static void destroy(Plan p) { fftw_destroy_plan(p); }
+  static int alignment_of(double* p) { return fftw_alignment_of(p); }
+  static char* export_wisdom() { return fftw_export_wisdom_to_string(); }
+  static void import_wisdom(const char* w) { fftw_import_wisdom_from_string(w); }
+  static void free_string(char* w) { fftw_free(w); }
+};
+
+template <>
+struct FftwApi<float> {
+  using Plan = fftwf_plan;
+  using Complex = fftwf_complex;
+  static constexpr const char* wisdom_suffix = "-single";
+  static void init_threads() { fftwf_init_threads(); }
+  static void plan_with_nthreads(int n) { fftwf_plan_with_nthreads(n); }
+  static Plan r2c_1d(int n, float* in, Complex* out, unsigned f) { return fftwf_plan_dft_r2c_1d(n, in, out, f); }
+  static Plan c2r_1d(int n, Complex* in, float* out, unsigned f) { return fftwf_plan_dft_c2r_1d(n, in, out, f); }
+  static Plan r2c_2d(int ny, int nx, float* in, Complex* out, unsigned f) {
+    return fftwf_plan_dft_r2c_2d(ny, nx, in, out, f);
+  }
+  static Plan c2r_2d(int ny, int nx, Complex* in, float* out, unsigned f) {
+    return fftwf_plan_dft_c2r_2d(ny, nx, in, out, f);
+  }
+  static void execute(Plan p) { fftwf_execute(p); }
+  static void execute_r2c(Plan p, float* in, Complex* out) { fftwf_execute_dft_r2c(p, in, out); }
+  static void destroy(Plan p) { fftwf_destroy_plan(p); }
+  static int alignment_of(float* p) { return fftwf_alignment_of(p); }
+  static char* export_wisdom() { return fftwf_export_wisdom_to_string(); }
+  static void import_wisdom(const char* w) { fftwf_import_wisdom_from_string(w); }
+  static void free_string(char* w) { fftwf_free(w); }
+};
+
 namespace {
 
+template <class Real>
+std::string wisdom_path() {
+  const std::string base = fft_wisdom_path();
+  return base.empty() ? base : base + FftwApi<Real>::wisdom_suffix;
+}
+
+template <class Real>
 std::string wisdom_string() {
-  char* w = fftw_export_wisdom_to_string();
+  char* w = FftwApi<Real>::export_wisdom();
   std::string s = w ? w : "";
-  fftw_free(w);
+  if (w) FftwApi<Real>::free_string(w);
   return s;
 }
 
-// Reads the wisdom file into FFTW (once per process); unreadable or stale files are ignored.
+// Reads the wisdom file into FFTW (once per process and precision); unreadable or stale files
+// are ignored.
+template <class Real>
 void import_wisdom_once() {
   static std::once_flag once;
   std::call_once(once, [] {
-    const std::string path = fft_wisdom_path();
+    const std::string path = wisdom_path<Real>();
     if (path.empty()) return;
     std::ifstream in(path);
     if (!in) return;
     std::ostringstream text;
     text << in.rdbuf();
-    fftw_import_wisdom_from_string(text.str().c_str());
+    FftwApi<Real>::import_wisdom(text.str().c_str());
   });
 }
 
 // Writes FFTW's wisdom back when planning added to it: to a temporary file renamed over the old
 // one, so that concurrent processes (MPI ranks, sweeps) never read a half-written file.
+template <class Real>
 void save_wisdom_if_grown(const std::string& before) {
-  const std::string path = fft_wisdom_path();
-  const std::string after = wisdom_string();
+  const std::string path = wisdom_path<Real>();
+  const std::string after = wisdom_string<Real>();
   if (path.empty() || after == before) return;
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
@@ -73,55 +131,69 @@ void save_wisdom_if_grown(const std::string& before) {
 
 }  // namespace
 
-RealFft2d::RealFft2d(std::size_t nx, std::size_t ny, int threads, double* external_real, FftPlanning planning)
+template <class Real>
+BasicRealFft2d<Real>::BasicRealFft2d(std::size_t nx, std::size_t ny, int threads, Real* external_real,
+                                     FftPlanning planning)
     : nx_(nx), ny_(ny) {
+  using Api = FftwApi<Real>;
   // FFTW keeps its thread support process-wide; initialising it twice is harmless but
   // call_once keeps it cheap.
   static std::once_flag init;
-  std::call_once(init, [] { fftw_init_threads(); });
+  std::call_once(init, [] { Api::init_threads(); });
   if (threads <= 0) threads = hardware_threads();
   owns_real_ = external_real == nullptr;
-  real_ = owns_real_ ? static_cast<double*>(allocate_big(nx * ny * sizeof(double))) : external_real;
-  spec_ = static_cast<std::complex<double>*>(allocate_big(ny * nxh() * sizeof(std::complex<double>)));
+  real_ = owns_real_ ? static_cast<Real*>(allocate_big(nx * ny * sizeof(Real))) : external_real;
+  spec_ = static_cast<std::complex<Real>*>(allocate_big(ny * nxh() * sizeof(std::complex<Real>)));
 
   // Small transforms gain nothing from threads.
-  fftw_plan_with_nthreads(nx * ny >= (1u << 16) ? threads : 1);
-  auto* c = reinterpret_cast<fftw_complex*>(spec_);
+  Api::plan_with_nthreads(nx * ny >= (1u << 16) ? threads : 1);
+  auto* c = reinterpret_cast<typename Api::Complex*>(spec_);
   const bool measure = planning == FftPlanning::measure;
   const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
   std::string before;
   if (measure) {
-    import_wisdom_once();
-    before = wisdom_string();
+    import_wisdom_once<Real>();
+    before = wisdom_string<Real>();
   }
   if (ny == 1) {
-    fwd_ = fftw_plan_dft_r2c_1d(static_cast<int>(nx), real_, c, flags);
-    bwd_ = fftw_plan_dft_c2r_1d(static_cast<int>(nx), c, real_, flags);
+    fwd_ = Api::r2c_1d(static_cast<int>(nx), real_, c, flags);
+    bwd_ = Api::c2r_1d(static_cast<int>(nx), c, real_, flags);
   } else {
-    fwd_ = fftw_plan_dft_r2c_2d(static_cast<int>(ny), static_cast<int>(nx), real_, c, flags);
-    bwd_ = fftw_plan_dft_c2r_2d(static_cast<int>(ny), static_cast<int>(nx), c, real_, flags);
+    fwd_ = Api::r2c_2d(static_cast<int>(ny), static_cast<int>(nx), real_, c, flags);
+    bwd_ = Api::c2r_2d(static_cast<int>(ny), static_cast<int>(nx), c, real_, flags);
   }
-  if (measure) save_wisdom_if_grown(before);
+  if (measure) save_wisdom_if_grown<Real>(before);
 }
 
-RealFft2d::~RealFft2d() {
-  if (fwd_) fftw_destroy_plan(fwd_);
-  if (bwd_) fftw_destroy_plan(bwd_);
-  if (owns_real_) free_big(real_, nx_ * ny_ * sizeof(double));
-  free_big(spec_, ny_ * nxh() * sizeof(std::complex<double>));
+template <class Real>
+BasicRealFft2d<Real>::~BasicRealFft2d() {
+  if (fwd_) FftwApi<Real>::destroy(fwd_);
+  if (bwd_) FftwApi<Real>::destroy(bwd_);
+  if (owns_real_) free_big(real_, nx_ * ny_ * sizeof(Real));
+  free_big(spec_, ny_ * nxh() * sizeof(std::complex<Real>));
 }
 
-void RealFft2d::forward() { fftw_execute(fwd_); }
-void RealFft2d::backward() { fftw_execute(bwd_); }
+template <class Real>
+void BasicRealFft2d<Real>::forward() {
+  FftwApi<Real>::execute(fwd_);
+}
+template <class Real>
+void BasicRealFft2d<Real>::backward() {
+  FftwApi<Real>::execute(bwd_);
+}
 
-void RealFft2d::forward_from(const double* in) {
-  auto* x = const_cast<double*>(in);  // r2c plans preserve their input
+template <class Real>
+void BasicRealFft2d<Real>::forward_from(const Real* in) {
+  auto* x = const_cast<Real*>(in);  // r2c plans preserve their input
   if (x == real_) return forward();
-  if (fftw_alignment_of(x) != fftw_alignment_of(real_)) {
+  if (FftwApi<Real>::alignment_of(x) != FftwApi<Real>::alignment_of(real_)) {
     std::copy(in, in + nx_ * ny_, real_);
     return forward();
   }
-  fftw_execute_dft_r2c(fwd_, x, reinterpret_cast<fftw_complex*>(spec_));
+  FftwApi<Real>::execute_r2c(fwd_, x, reinterpret_cast<typename FftwApi<Real>::Complex*>(spec_));
 }
+
+template class BasicRealFft2d<double>;
+template class BasicRealFft2d<float>;
 
 }  // namespace wr
