@@ -67,7 +67,12 @@ nlohmann::json step_json(const ContactStep& s) {
           {"residual_history", s.history},
           // How much mu still moved at the end (friction_convergence.hpp); null where not measured.
           {"mu_drift", std::isfinite(s.mu_drift) ? nlohmann::json(s.mu_drift) : nlohmann::json(nullptr)},
-          {"mu_history", s.mu_history}};
+          {"mu_history", s.mu_history},
+          {"coarse_start", s.coarse_iterations > 0
+                               ? nlohmann::json{{"signorini_iterations", s.coarse_iterations},
+                                                {"wall_s", s.coarse_wall_s},
+                                                {"converged", s.coarse_converged}}
+                               : nlohmann::json(nullptr)}};
 }
 
 // --thickness: metres or "inf" (half-space); empty gives `fallback`.
@@ -418,7 +423,7 @@ int run_contact(ContactCli c) {
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
+                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
                      {"follow_geometry", c.opt.follow_geometry}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
@@ -514,6 +519,10 @@ Command add_contact(CLI::App& root) {
   s->add_flag("--face-modes", c->opt.face_modes,
               "fem, fixed top, with --extrapolate: also jump along the face's slide, lateral expansion and twist "
               "(experimental)");
+  s->add_option("--coarse-start", c->opt.coarse_refine,
+                "fem: nested iteration; every step is solved first on a block of this refinement (below --refine, "
+                "dividing it), and its increment starts the step on the fine block; 0: off (experimental)")
+      ->capture_default_str();
   s->add_option("--max-penetration", c->opt.max_penetration,
                  "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "
                  "negative: no check)");

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "lib/analytic/hertz.hpp"
+#include "lib/core/errors.hpp"
+#include "lib/fem/contact_test.hpp"
 #include "lib/fem/elastic_block.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/fem/adaptive_damping.hpp"
@@ -318,6 +320,68 @@ TEST(Fem, ParaboloidMatchesHertz) {
   EXPECT_NEAR(fit.radius / a_hertz, 1.0, 0.03);
   EXPECT_NEAR(s.fz / hertz_force(fit.radius, R, e_star), 1.0, 0.03);
   EXPECT_NEAR(fit.peak_pressure / (3 * s.fz / (2 * M_PI * a_hertz * a_hertz)), 1.0, 0.03);
+}
+
+
+// The nested start's prolongation: a field bilinear in x and y on a coarse face lattice is
+// reproduced exactly at every node of a finer face (which includes the coarse nodes and the
+// midpoints between them), and added to what is there.
+TEST(Fem, LiftedFaceFieldReproducesBilinearFieldsOnAFinerFace) {
+  BlockSpec b;
+  b.mesh.lx = 0.03;
+  b.mesh.ly = 0.02;
+  b.mesh.lz = 0.02;
+  b.mesh.nx = 16;
+  b.mesh.ny = 8;
+  ElasticBlock fine(b);
+  const int cnx = 4, cny = 2;
+  const auto f = [](double x, double y, int c) { return 1e-4 * (c + 1) * (0.3 + 20 * x - 35 * y + 900 * x * y); };
+  std::vector<double> coarse(3 * (cnx + 1) * (cny + 1));
+  for (int j = 0; j <= cny; ++j)
+    for (int i = 0; i <= cnx; ++i)
+      for (int c = 0; c < 3; ++c) coarse[3 * (j * (cnx + 1) + i) + c] = f(i * b.mesh.lx / cnx, j * b.mesh.ly / cny, c);
+  fine.add_lifted_face_field(coarse, cnx, cny);
+  fine.add_lifted_face_field(coarse, cnx, cny);  // it adds: twice the field
+  const std::vector<double> u = fine.face_displacement();
+  ASSERT_EQ(u.size(), std::size_t(3 * (b.mesh.nx + 1) * (b.mesh.ny + 1)));
+  double worst = 0;
+  for (int j = 0; j <= b.mesh.ny; ++j)
+    for (int i = 0; i <= b.mesh.nx; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double want = 2 * f(i * b.mesh.lx / b.mesh.nx, j * b.mesh.ly / b.mesh.ny, c);
+        worst = std::max(worst, std::abs(u[3 * (j * (b.mesh.nx + 1) + i) + c] - want));
+      }
+  EXPECT_LT(worst, 1e-15);
+  EXPECT_THROW(fine.add_lifted_face_field(coarse, cnx + 1, cny), std::invalid_argument);
+}
+
+// Nested iteration on a rough-enough obstacle (a cap pressed into a third of the face): the
+// step started from the coarse block's solution converges to the same state as the plain one
+// (Fz and contact within the tolerance's reach) in fewer Signorini iterations on the fine block.
+TEST(Fem, CoarseStartReachesTheSameStateInFewerFineIterations) {
+  const HeightMap cap = paraboloid_cap(16, 0.03, 0.01);
+  ContactTestOptions o;
+  o.uz = 1.5e-3;
+  o.normal_steps = 1;
+  o.refine = 2;
+  o.tolerance = 1e-5;
+  o.rms_slope = 0.1;  // normalises sigma* only
+  const ContactTestResult plain = run_contact_test(cap, o, nullptr);
+  o.coarse_refine = 1;
+  const ContactTestResult nested = run_contact_test(cap, o, nullptr);
+  ASSERT_EQ(plain.steps.size(), 1u);
+  ASSERT_EQ(nested.steps.size(), 1u);
+  ASSERT_TRUE(plain.steps[0].converged) << plain.steps[0].message;
+  ASSERT_TRUE(nested.steps[0].converged) << nested.steps[0].message;
+  EXPECT_TRUE(nested.steps[0].coarse_converged);
+  EXPECT_GT(nested.steps[0].coarse_iterations, 0);
+  EXPECT_NEAR(nested.steps[0].fz / plain.steps[0].fz, 1.0, 1e-3);
+  EXPECT_NEAR(nested.steps[0].area_fraction, plain.steps[0].area_fraction, 2.0 / double(plain.face_nodes));
+  EXPECT_LT(nested.steps[0].signorini_iterations, plain.steps[0].signorini_iterations)
+      << "plain " << plain.steps[0].signorini_iterations << ", nested " << nested.steps[0].signorini_iterations
+      << " (coarse " << nested.steps[0].coarse_iterations << ")";
+  o.coarse_refine = 3;  // must divide --refine
+  EXPECT_THROW(run_contact_test(cap, o, nullptr), InputError);
 }
 
 }  // namespace

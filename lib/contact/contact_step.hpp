@@ -17,6 +17,11 @@ struct ContactStep {
   int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
   int extrapolations = 0;  // FEM: slow-mode (Aitken) jumps taken in the step
   int rejected_jumps = 0;  // FEM: of them, undone (the contact set collapsed after the jump)
+  // FEM with a coarse start (ContactTestOptions::coarse_refine): the coarse block's Signorini
+  // iterations and wall time in this step (included in wall_s), and whether it converged.
+  int coarse_iterations = 0;
+  double coarse_wall_s = 0;
+  bool coarse_converged = false;
   double wall_s = 0;
   double wall_linearise = 0, wall_rotate = 0, wall_solve = 0;  // s, phases of the step
   bool converged = false;

@@ -5,12 +5,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <utility>
 
 #include "lib/contact/friction_convergence.hpp"
 #include "lib/core/errors.hpp"
 
 namespace wr {
+namespace {
+
+int rank_of(MPI_Comm comm) {
+  int r = 0;
+  MPI_Comm_rank(comm == MPI_COMM_NULL ? MPI_COMM_WORLD : comm, &r);
+  return r;
+}
+
+}  // namespace
 
 void check_extrapolation_block(int every) {
   if (every < 0 || every == 1) throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
@@ -35,19 +45,30 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   for (double& v : shifted.h) v -= hmax;
   const PeriodicObstacle ob(shifted);
 
-  BlockSpec b;
-  b.mesh.lx = obstacle.lx();
-  b.mesh.ly = obstacle.ly();
-  b.mesh.lz = opt.height > 0 ? opt.height : b.mesh.lx;
-  b.mesh.nx = int(obstacle.nx) * opt.refine;
-  b.mesh.ny = int(obstacle.ny) * opt.refine;
-  b.mesh.layers_per_level = opt.layers_per_level;
-  b.mesh.max_coarsenings = opt.max_coarsenings;
+  if (opt.coarse_refine < 0 || (opt.coarse_refine > 0 && (opt.coarse_refine >= opt.refine || opt.refine % opt.coarse_refine)))
+    throw InputError("--coarse-start", "must be 0 (off) or a refinement below --refine that divides it");
+  auto block_spec = [&](int refine) {
+    BlockSpec b;
+    b.mesh.lx = obstacle.lx();
+    b.mesh.ly = obstacle.ly();
+    b.mesh.lz = opt.height > 0 ? opt.height : b.mesh.lx;
+    b.mesh.nx = int(obstacle.nx) * refine;
+    b.mesh.ny = int(obstacle.ny) * refine;
+    b.mesh.layers_per_level = opt.layers_per_level;
+    b.mesh.max_coarsenings = opt.max_coarsenings;
+    b.young = opt.young;
+    b.poisson = opt.poisson;
+    b.comm = opt.comm;
+    return b;
+  };
+  const BlockSpec b = block_spec(opt.refine);
   res.face_spacing = obstacle.dx / opt.refine;
-  b.young = opt.young;
-  b.poisson = opt.poisson;
-  b.comm = opt.comm;
   ElasticBlock block(b);
+  std::unique_ptr<ElasticBlock> coarse;
+  const BlockSpec bc = block_spec(std::max(opt.coarse_refine, 1));
+  if (opt.coarse_refine > 0) coarse = std::make_unique<ElasticBlock>(bc);
+  std::vector<double> coarse_face;  // the coarse block's face displacement after its last step
+  if (coarse) coarse_face = coarse->face_displacement();
   res.wall_setup = MPI_Wtime() - t_start;
   res.nodes = block.nodes();
   res.dofs = block.dofs();
@@ -83,8 +104,27 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     load.uz = normal_phase ? opt.uz * k / opt.normal_steps : opt.uz;
     load.ux = normal_phase ? 0.0 : opt.ux * (k - opt.normal_steps) / opt.shear_steps;
     const double t0 = MPI_Wtime();
-    ContactSolution s = block.solve(load);
     ContactStep st;
+    if (coarse) {
+      ContactLoad cl = load;
+      cl.face_maps = false;
+      if (opt.trace && rank_of(opt.comm) == 0) std::fprintf(stderr, "  step %d on the coarse block (refine %d):\n", k, opt.coarse_refine);
+      const ContactSolution cs = coarse->solve(cl);
+      st.coarse_iterations = cs.outer_iterations;
+      st.coarse_converged = cs.converged;
+      st.coarse_wall_s = MPI_Wtime() - t0;
+      // Only a converged coarse step is a start worth taking; either way the fine step decides.
+      std::vector<double> now = coarse->face_displacement();
+      if (cs.converged) {
+        for (std::size_t q = 0; q < now.size(); ++q) coarse_face[q] = now[q] - coarse_face[q];
+        block.add_lifted_face_field(coarse_face, bc.mesh.nx, bc.mesh.ny);
+      }
+      coarse_face = std::move(now);
+      if (opt.trace && rank_of(opt.comm) == 0)
+        std::fprintf(stderr, "  coarse step %d: %s in %d Signorini iterations, %.1f s; the fine step starts from it\n", k,
+                     cs.converged ? "converged" : "NOT converged", cs.outer_iterations, st.coarse_wall_s);
+    }
+    ContactSolution s = block.solve(load);
     st.uz = load.uz;
     st.ux = load.ux;
     st.fz = s.fz;

@@ -21,6 +21,10 @@ struct ContactTestOptions {
   int normal_steps = 4;
   int shear_steps = 4;
   int refine = 2;           // contact-face spacing = obstacle spacing / refine
+  // > 0 (and < refine, dividing it): nested iteration. Every step is solved first on a block
+  // with this refinement, and its increment, interpolated to this block's face and lifted into
+  // it, starts the step here (ElasticBlock::add_lifted_face_field).
+  int coarse_refine = 0;
   double height = 0;        // m, block height (0: the period, a cube)
   int layers_per_level = 2;  // brick layers at each in-plane spacing (graded_mesh.hpp)
   int max_coarsenings = 16;  // in-plane doublings of the spacing away from the face (0: none)

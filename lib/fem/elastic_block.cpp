@@ -480,6 +480,56 @@ const GradedMesh& ElasticBlock::mesh() const { return *impl_->mesh; }
 
 std::size_t ElasticBlock::nodes() const { return std::size_t(impl_->mesh->nodes()); }
 
+std::vector<double> ElasticBlock::face_displacement() const {
+  const Impl& m = *impl_;
+  const std::size_t nfx = std::size_t(m.face_nx() + 1);
+  std::vector<double> local(3 * nfx * std::size_t(m.face_ny() + 1), 0.0), global(local.size());
+  const PetscInt rstart = 3 * PetscInt(m.own_begin);
+  const PetscScalar* a;
+  VecGetArrayRead(m.u, &a);
+  for (const FaceNode& f : m.owned_face_nodes())
+    for (int c = 0; c < 3; ++c) local[3 * (std::size_t(f.j) * nfx + std::size_t(f.i)) + c] = a[f.row[c] - rstart];
+  VecRestoreArrayRead(m.u, &a);
+  MPI_Allreduce(local.data(), global.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, m.comm);
+  return global;
+}
+
+void ElasticBlock::add_lifted_face_field(const std::vector<double>& field, int fnx, int fny) {
+  if (fnx < 1 || fny < 1 || field.size() != 3 * std::size_t(fnx + 1) * std::size_t(fny + 1))
+    throw std::invalid_argument("add_lifted_face_field: the field is not 3 x (fnx+1) x (fny+1) values");
+  Impl& m = *impl_;
+  const GradedMesh& g = *m.mesh;
+  const PetscInt rstart = 3 * PetscInt(m.own_begin);
+  const auto& planes = g.planes();
+  const double z0 = planes.front().z, lz = planes.back().z - z0;
+  const double hx = m.spec.mesh.lx / fnx, hy = m.spec.mesh.ly / fny;
+  PetscScalar* a;
+  VecGetArray(m.u, &a);
+  for (std::size_t p = 0; p < planes.size(); ++p) {
+    const double w = 1 - (planes[p].z - z0) / lz;  // 1 on the face, 0 on the fixed top
+    if (w <= 0) continue;
+    const int nxp = g.cells_x(planes[p].level), nyp = g.cells_y(planes[p].level);
+    for (int j = 0; j <= nyp; ++j)
+      for (int i = 0; i <= nxp; ++i) {
+        const std::int32_t id = planes[p].id[std::size_t(j) * (nxp + 1) + i];
+        if (id < 0 || !m.owns(id)) continue;
+        const Vec3 x = g.position(int(p), i, j);
+        const double sx = std::clamp(x.x / hx, 0.0, double(fnx)), sy = std::clamp(x.y / hy, 0.0, double(fny));
+        const int i0 = std::min(int(sx), fnx - 1), j0 = std::min(int(sy), fny - 1);
+        const double fx = sx - i0, fy = sy - j0;
+        const double wt[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        const std::size_t at[4] = {std::size_t(j0) * (fnx + 1) + i0, std::size_t(j0) * (fnx + 1) + i0 + 1,
+                                   std::size_t(j0 + 1) * (fnx + 1) + i0, std::size_t(j0 + 1) * (fnx + 1) + i0 + 1};
+        for (int c = 0; c < 3; ++c) {
+          double v = 0;
+          for (int q = 0; q < 4; ++q) v += wt[q] * field[3 * at[q] + c];
+          a[m.dof(id, c) - rstart] += w * v;
+        }
+      }
+  }
+  VecRestoreArray(m.u, &a);
+}
+
 void ElasticBlock::write_vtu(const std::string& path) const {
   const Impl& m = *impl_;
   const GradedMesh& g = *m.mesh;

@@ -113,6 +113,16 @@ class ElasticBlock {
   // The deformed block as a VTK unstructured grid (.vtu, ParaView; hexahedra, point data
   // "displacement" in m, hanging nodes interpolated). Collective; rank 0 writes `path`.
   void write_vtu(const std::string& path) const;
+  // The contact face's displacement, m: (nx+1) x (ny+1) face nodes, row-major (rows = y), x, y, z
+  // per node; on every rank (collective).
+  std::vector<double> face_displacement() const;
+  // Adds `field`, a displacement given on the (fnx+1) x (fny+1) face lattice of another block
+  // over the same face (as face_displacement() returns it), interpolated bilinearly at every
+  // node's in-plane position and faded linearly with height to 0 at the top (collective).
+  // Why: nested iteration; a coarser block's step increment is a cheap start for this one.
+  // Its slow mode (the face creeping along the obstacle) is long-waved, so the coarse mesh
+  // resolves it, and the Signorini iteration of the fine mesh is left the short-waved rest.
+  void add_lifted_face_field(const std::vector<double>& field, int fnx, int fny);
   std::size_t nodes() const;  // independent nodes
   const GradedMesh& mesh() const;
   std::size_t dofs() const { return 3 * nodes(); }
