@@ -1,6 +1,7 @@
 #include "lib/fem/contact_test.hpp"
 
 #include <mpi.h>
+#include <petscsys.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +17,7 @@ namespace {
 
 int rank_of(MPI_Comm comm) {
   int r = 0;
-  MPI_Comm_rank(comm == MPI_COMM_NULL ? MPI_COMM_WORLD : comm, &r);
+  MPI_Comm_rank(comm == MPI_COMM_NULL ? PETSC_COMM_WORLD : comm, &r);  // as ElasticBlock's default
   return r;
 }
 

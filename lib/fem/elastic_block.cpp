@@ -455,6 +455,29 @@ struct ElasticBlock::Impl {
                                                      const FaceModeBasis& basis) const;
   // Adds the modal displacement c through the block, fading linearly to the fixed top.
   void add_face_modes(const FaceModeBasis& basis, const FaceModeExtrapolation::Modes& c);
+  // Calls f(x, w, d) for every owned independent node: x its reference position, w = 1 - its
+  // height / lz (1 on the face, 0 on the fixed top), d its three entries of u. Shared by the
+  // ways of spreading a face displacement through the block (face modes, the coarse start).
+  template <class F>
+  void for_each_lifted_node(F&& f) {
+    const GradedMesh& g = *mesh;
+    const PetscInt rstart = 3 * PetscInt(own_begin);
+    const auto& planes = g.planes();
+    const double z0 = planes.front().z, lz = planes.back().z - z0;
+    PetscScalar* a;
+    VecGetArray(u, &a);
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+      const double w = 1 - (planes[p].z - z0) / lz;
+      const int nxp = g.cells_x(planes[p].level), nyp = g.cells_y(planes[p].level);
+      for (int j = 0; j <= nyp; ++j)
+        for (int i = 0; i <= nxp; ++i) {
+          const std::int32_t id = planes[p].id[std::size_t(j) * (nxp + 1) + i];
+          if (id < 0 || !owns(id)) continue;
+          f(g.position(int(p), i, j), w, a + (dof(id, 0) - rstart));
+        }
+    }
+    VecRestoreArray(u, &a);
+  }
   // Reactions, separation, penetration and (if asked) the face maps of the final u.
   void output_results(const std::vector<FaceNode>& face, const TopBoundary& top,
                       const std::vector<double>& normal_force, const ContactLoad& load, Vec work,
@@ -497,37 +520,21 @@ std::vector<double> ElasticBlock::face_displacement() const {
 void ElasticBlock::add_lifted_face_field(const std::vector<double>& field, int fnx, int fny) {
   if (fnx < 1 || fny < 1 || field.size() != 3 * std::size_t(fnx + 1) * std::size_t(fny + 1))
     throw std::invalid_argument("add_lifted_face_field: the field is not 3 x (fnx+1) x (fny+1) values");
-  Impl& m = *impl_;
-  const GradedMesh& g = *m.mesh;
-  const PetscInt rstart = 3 * PetscInt(m.own_begin);
-  const auto& planes = g.planes();
-  const double z0 = planes.front().z, lz = planes.back().z - z0;
-  const double hx = m.spec.mesh.lx / fnx, hy = m.spec.mesh.ly / fny;
-  PetscScalar* a;
-  VecGetArray(m.u, &a);
-  for (std::size_t p = 0; p < planes.size(); ++p) {
-    const double w = 1 - (planes[p].z - z0) / lz;  // 1 on the face, 0 on the fixed top
-    if (w <= 0) continue;
-    const int nxp = g.cells_x(planes[p].level), nyp = g.cells_y(planes[p].level);
-    for (int j = 0; j <= nyp; ++j)
-      for (int i = 0; i <= nxp; ++i) {
-        const std::int32_t id = planes[p].id[std::size_t(j) * (nxp + 1) + i];
-        if (id < 0 || !m.owns(id)) continue;
-        const Vec3 x = g.position(int(p), i, j);
-        const double sx = std::clamp(x.x / hx, 0.0, double(fnx)), sy = std::clamp(x.y / hy, 0.0, double(fny));
-        const int i0 = std::min(int(sx), fnx - 1), j0 = std::min(int(sy), fny - 1);
-        const double fx = sx - i0, fy = sy - j0;
-        const double wt[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-        const std::size_t at[4] = {std::size_t(j0) * (fnx + 1) + i0, std::size_t(j0) * (fnx + 1) + i0 + 1,
-                                   std::size_t(j0 + 1) * (fnx + 1) + i0, std::size_t(j0 + 1) * (fnx + 1) + i0 + 1};
-        for (int c = 0; c < 3; ++c) {
-          double v = 0;
-          for (int q = 0; q < 4; ++q) v += wt[q] * field[3 * at[q] + c];
-          a[m.dof(id, c) - rstart] += w * v;
-        }
-      }
-  }
-  VecRestoreArray(m.u, &a);
+  const double hx = impl_->spec.mesh.lx / fnx, hy = impl_->spec.mesh.ly / fny;
+  impl_->for_each_lifted_node([&](const Vec3& x, double w, PetscScalar* d) {
+    if (w <= 0) return;  // the fixed top
+    const double sx = std::clamp(x.x / hx, 0.0, double(fnx)), sy = std::clamp(x.y / hy, 0.0, double(fny));
+    const int i0 = std::min(int(sx), fnx - 1), j0 = std::min(int(sy), fny - 1);
+    const double fx = sx - i0, fy = sy - j0;
+    const double wt[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+    const std::size_t at[4] = {std::size_t(j0) * (fnx + 1) + i0, std::size_t(j0) * (fnx + 1) + i0 + 1,
+                               std::size_t(j0 + 1) * (fnx + 1) + i0, std::size_t(j0 + 1) * (fnx + 1) + i0 + 1};
+    for (int c = 0; c < 3; ++c) {
+      double v = 0;
+      for (int q = 0; q < 4; ++q) v += wt[q] * field[3 * at[q] + c];
+      d[c] += w * v;
+    }
+  });
 }
 
 void ElasticBlock::write_vtu(const std::string& path) const {
@@ -940,28 +947,13 @@ FaceModeExtrapolation::Modes ElasticBlock::Impl::face_mode_coordinates(const std
 }
 
 void ElasticBlock::Impl::add_face_modes(const FaceModeBasis& basis, const FaceModeExtrapolation::Modes& c) {
-  const GradedMesh& g = *mesh;
-  const PetscInt rstart = 3 * PetscInt(own_begin);
-  const auto& planes = g.planes();
-  const double z0 = planes.front().z, lz = planes.back().z - z0;
-  PetscScalar* a;
-  VecGetArray(u, &a);
-  for (std::size_t p = 0; p < planes.size(); ++p) {
-    const double w = 1 - (planes[p].z - z0) / lz;  // 1 on the face, 0 on the fixed top
-    const int nxp = g.cells_x(planes[p].level), nyp = g.cells_y(planes[p].level);
-    for (int j = 0; j <= nyp; ++j)
-      for (int i = 0; i <= nxp; ++i) {
-        const std::int32_t id = planes[p].id[std::size_t(j) * (nxp + 1) + i];
-        if (id < 0 || !owns(id)) continue;
-        const Vec3 x = g.position(int(p), i, j);
-        for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) {
-          const auto phi = basis.shape(x.x, x.y, k);
-          a[dof(id, 0) - rstart] += w * c[k] * phi[0];
-          a[dof(id, 1) - rstart] += w * c[k] * phi[1];
-        }
-      }
-  }
-  VecRestoreArray(u, &a);
+  for_each_lifted_node([&](const Vec3& x, double w, PetscScalar* d) {
+    for (int k = 0; k < FaceModeExtrapolation::kModes; ++k) {
+      const auto phi = basis.shape(x.x, x.y, k);
+      d[0] += w * c[k] * phi[0];
+      d[1] += w * c[k] * phi[1];
+    }
+  });
 }
 
 ContactSolution ElasticBlock::solve(const ContactLoad& load) {
