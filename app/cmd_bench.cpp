@@ -171,7 +171,8 @@ int run_spectral_speed(const BenchCli& c) {
   std::fprintf(stderr, "spectral normal contact: %d loads per surface\n", c.spectral_loads);
   const auto rows = bench::spectral_speed(c.spectral_sizes, c.spectral_loads, c.threads, c.spectral_tol, c.admit_every);
   std::printf("spectral normal contact (half-space, load control, sigma* = 0.01 ... %.2f, warm starts, tol %.0e, "
-              "admissions every %d)\n", 0.01 * c.spectral_loads, c.spectral_tol, c.admit_every);
+              "CG in %s precision, admissions every %d)\n", 0.01 * c.spectral_loads, c.spectral_tol,
+              rows.empty() ? "-" : rows[0]["cg_precision"].get<std::string>().c_str(), c.admit_every);
   std::printf("  %6s %8s %9s %10s %10s %8s %8s %12s %12s %10s\n", "N", "threads", "plan [s]", "setup [s]",
               "solve [s]", "iters", "pairs", "s/iteration", "FFT pair [s]", "A/A0 last");
   for (const auto& r : rows)

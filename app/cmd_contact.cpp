@@ -293,7 +293,8 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
                      {"geometry_tolerance", o.geometry_tolerance},
                      {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"thickness", o.body.half_space() ? nlohmann::json("inf") : nlohmann::json(o.body.thickness)},
-                     {"tolerance", o.solver.tolerance}, {"threads", c.threads}};
+                     {"tolerance", o.solver.tolerance},
+                     {"cg_precision", o.solver.single_precision_cg() ? "single" : "double"}, {"threads", c.threads}};
   prov.model = "spectral: FFT boundary elements, periodic elastic " +
                std::string(o.body.half_space() ? "half-space" : "layer with a fixed far face") +
                ", Polonsky-Keer constrained CG (FFT-preconditioned)" +

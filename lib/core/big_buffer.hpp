@@ -26,7 +26,9 @@ struct BigBufferAllocator {
   bool operator==(const BigBufferAllocator<U>&) const noexcept { return true; }
 };
 
-using BigVector = std::vector<double, BigBufferAllocator<double>>;
-using BigVectorSingle = std::vector<float, BigBufferAllocator<float>>;
+template <class T>
+using BigArray = std::vector<T, BigBufferAllocator<T>>;
+using BigVector = BigArray<double>;
+using BigVectorSingle = BigArray<float>;
 
 }  // namespace wr

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 #include "lib/core/fft.hpp"
 #include "lib/core/parallel.hpp"
@@ -19,18 +20,49 @@ struct SpectralNormalContact::Impl {
   BigVector zo;               // m, obstacle shifted to max 0
   std::vector<double> kernel;  // C(q) / n over the half spectrum (ny x nxh): FFTW is unnormalised
   std::vector<float> inverse_kernel;  // 1 / (C(q) n); 0 for the half-space's mean mode
-  BigVector p, g;  // 2 MiB-aligned huge pages: fewer TLB misses in the streaming passes (20 % at 2048^2)
-  BigVector t;                       // CG direction; FFTW transforms it in place of r (same alignment)
+  // 2 MiB-aligned huge pages: fewer TLB misses in the streaming passes (20 % at 2048^2).
+  BigVector p;
+  BigVector g;  // the returned gap, double whatever the CG's precision
   std::vector<unsigned char> in_contact;  // p > 0, kept beside p: a byte per point is cheap to stream
   // w = C p, z (preconditioned residual), r = C t: each transformed in place by its own FFT
   // plan on its own (page-aligned) array, so no convolution copies its input or output.
   // z is single precision: a preconditioner need only be a fixed SPD operator, and rounding
   // at 1e-7 of z (relative, so shrinking with the residual) does not change the solution, which
   // is judged on the double-precision gap; its transforms take 0.6x the time of double ones.
-  BigVector w, r;
+  BigVector w;
   BigVectorSingle z;
-  std::unique_ptr<RealFft2d> fft_w, fft_r;
+  std::unique_ptr<RealFft2d> fft_w;
   std::unique_ptr<RealFft2dSingle> fft_z;
+  // The CG's working gap, direction t and r = C t in precision Real (SpectralOptions::precision).
+  // p and w stay double, and w is recomputed from p in double at least every 25 iterations:
+  // single precision only perturbs the CG's search, whose progress is judged on p.
+  template <class Real>
+  struct CgWork {
+    BigArray<Real> g, t, r;
+    std::unique_ptr<BasicRealFft2d<Real>> fft_r;  // transforms r in place (t -> r's spectrum -> r)
+    std::vector<Real> kernel;                     // C(q) / n, as `kernel`
+  };
+  CgWork<float> cg_single;
+  CgWork<double> cg_double;
+  FftPlanning planning = FftPlanning::measure;
+  // The work arrays of precision Real, allocated (and their plan made) on first use.
+  template <class Real>
+  CgWork<Real>& cg_work() {
+    CgWork<Real>& c = [this]() -> CgWork<Real>& {
+      if constexpr (std::is_same_v<Real, float>) return cg_single; else return cg_double;
+    }();
+    if (!c.fft_r) {
+      for (auto* v : {&c.g, &c.t, &c.r}) v->assign(n, Real(0));
+      c.fft_r = std::make_unique<BasicRealFft2d<Real>>(nx, ny, threads, c.r.data(), planning);
+      c.kernel.assign(kernel.begin(), kernel.end());
+    }
+    return c;
+  }
+  // The iterations of solve() from the start in p, with the CG in precision Real; d is the
+  // approach (updated under load control).
+  template <class Real>
+  void iterate(CgWork<Real>& cg, bool load_control, double target, double& d, const SpectralOptions& opt,
+               SpectralNormalResult& res);
   bool have_solution = false;
   // The last two converged solutions of the same kind of control and their control values:
   // a load sweep starts each solve from their linear extrapolation (the contact grows
@@ -131,7 +163,7 @@ SpectralNormalContact::SpectralNormalContact(const HeightMap& obstacle, const El
 }
 
 void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_height, const ElasticBody& b, int th,
-                                        FftPlanning planning) {
+                                        FftPlanning plans) {
   nx = obstacle.nx;
   ny = obstacle.ny;
   n = nx * ny;
@@ -140,12 +172,12 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
   top = top_height;
   zo.assign(obstacle.h.begin(), obstacle.h.end());
   for (double& v : zo) v -= top;
-  for (auto* v : {&w, &r}) v->assign(n, 0.0);
+  planning = plans;
+  w.assign(n, 0.0);
   z.assign(n, 0.0f);
   fft_w = std::make_unique<RealFft2d>(nx, ny, threads, w.data(), planning);
   fft_z = std::make_unique<RealFft2dSingle>(nx, ny, threads, z.data(), planning);
-  fft_r = std::make_unique<RealFft2d>(nx, ny, threads, r.data(), planning);
-  for (auto* v : {&w, &r}) std::fill(v->begin(), v->end(), 0.0);  // measuring wrote into them
+  std::fill(w.begin(), w.end(), 0.0);  // measuring wrote into them
   std::fill(z.begin(), z.end(), 0.0f);
   const std::size_t nxh = fft_w->nxh();
   kernel.resize(ny * nxh);
@@ -162,7 +194,6 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
     }
   }
   for (auto* v : {&p, &g}) v->assign(n, 0.0);
-  t.assign(n, 0.0);
   in_contact.assign(n, 0);
 }
 
@@ -220,6 +251,32 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
   have_solution = true;
 
   for_each([&](std::size_t k) { in_contact[k] = p[k] > 0; });
+  if (opt.single_precision_cg())
+    iterate(cg_work<float>(), load_control, target, d, opt, res);
+  else
+    iterate(cg_work<double>(), load_control, target, d, opt, res);
+  if (res.converged) {
+    if (history_kind != int(load_control)) history_count = 0;
+    history_kind = int(load_control);
+    std::swap(p_before, p_last);
+    p_last = p;
+    c_before = c_last;
+    c_last = target;
+    ++history_count;
+  }
+  if (!res.converged && res.message.empty())
+    res.message = "spectral normal contact did not converge in " + std::to_string(opt.max_iterations) +
+                  " iterations (last error " + (res.history.empty() ? "-" : std::to_string(res.history.back())) + ")";
+  summarise(d, res);
+  res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+template <class Real>
+void SpectralNormalContact::Impl::iterate(CgWork<Real>& cg, bool load_control, double target, double& d,
+                                          const SpectralOptions& opt, SpectralNormalResult& res) {
+  const double nd = double(n);
+  BigArray<Real>&gap = cg.g, &t = cg.t, &r = cg.r;
   double g_old = 1.0;
   bool restart = true;
   bool w_current = false;  // w = C p holds (updated incrementally while no point changes state)
@@ -229,26 +286,28 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
   // iteration's first pass: every pass streams several grid-sized arrays through memory, which
   // costs as much as the FFTs, so the passes are fused wherever the data flow allows.
   double scale = 1.0, tau = 0.0;
-  std::fill(t.begin(), t.end(), 0.0);
+  std::fill(t.begin(), t.end(), Real(0));
   for (int it = 0; it < opt.max_iterations; ++it) {
     res.iterations = it + 1;
     // Gap; under load control its mean over the contact set is the approach. Incremental
     // updates of w accumulate rounding: it is recomputed regularly.
     const bool recompute = !w_current || since_full >= 25;
+    // The load rescaling still owed by p, applied where p is next rewritten (the step's pass):
+    // a pass that only rescales p would stream it twice for nothing.
+    const double p_scale = scale;
     if (recompute) {
-      for_each([&](std::size_t k) { w[k] = p[k] *= scale; });
+      for_each([&](std::size_t k) { w[k] = scale * p[k]; });
       convolve_in_place(*fft_w, kernel);
       ++res.fft_pairs;
       since_full = 0;
     }
     const auto gs = reduce<2>([&](std::size_t k, std::array<double, 2>& a) {
-      if (!recompute) {  // while no point changed state, p moved by exactly -tau t, so did w
-        p[k] *= scale;
-        w[k] = scale * (w[k] - tau * r[k]);
-      }
-      g[k] = w[k] - d - zo[k];
+      // While no point changed state, p moved by exactly -tau t, so did w.
+      if (!recompute) w[k] = scale * (w[k] - tau * r[k]);
+      const double gk = w[k] - d - zo[k];
+      gap[k] = Real(gk);
       if (in_contact[k]) {
-        a[0] += g[k];
+        a[0] += gk;
         a[1] += 1;
       }
     });
@@ -265,7 +324,7 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
     // Preconditioned residual z = R C^-1 R^T g on the contact set (Vollebregt 2014): the
     // inverse compliance is diagonal in Fourier space, exact at full contact, and removes the
     // 1/q spread of the spectrum that makes plain CG take O(sqrt(N)) iterations per decade.
-    for_each([&](std::size_t k) { z[k] = in_contact[k] ? float(g[k] - shift) : 0.0f; });
+    for_each([&](std::size_t k) { z[k] = in_contact[k] ? float(gap[k] - shift) : 0.0f; });
     convolve_in_place(*fft_z, inverse_kernel);
     ++res.fft_pairs;
     // The sum of z over the contact set and g.z; load control then shifts z to a zero sum (a
@@ -273,23 +332,23 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
     const auto zs = reduce<2>([&](std::size_t k, std::array<double, 2>& a) {
       if (in_contact[k]) {
         a[0] += z[k];
-        a[1] += (g[k] - shift) * z[k];
+        a[1] += (gap[k] - shift) * z[k];
       }
     });
     const double zshift = load_control ? zs[0] / nc : 0.0;
     const double gz = zs[1];
     const double beta = restart ? 0.0 : gz / g_old;
     g_old = gz;
-    for_each([&](std::size_t k) { t[k] = in_contact[k] ? (z[k] - zshift) + beta * t[k] : 0.0; });
-    fft_r->forward_from(t.data());  // r = C t, transformed straight from t
-    multiply_and_invert(*fft_r, kernel);
+    for_each([&](std::size_t k) { t[k] = in_contact[k] ? Real((z[k] - zshift) + beta * t[k]) : Real(0); });
+    cg.fft_r->forward_from(t.data());  // r = C t, transformed straight from t
+    multiply_and_invert(*cg.fft_r, cg.kernel);
     ++res.fft_pairs;
     // r is shifted to a zero mean over the contact set under load control (the approach
     // absorbs the mean): (r - rshift).t = r.t - rshift sum t, and (g - shift).t likewise.
     const auto rs = reduce<4>([&](std::size_t k, std::array<double, 4>& a) {
       if (in_contact[k]) {
         a[0] += r[k];
-        a[1] += g[k] * t[k];
+        a[1] += gap[k] * t[k];
         a[2] += r[k] * t[k];
         a[3] += t[k];
       }
@@ -304,8 +363,8 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
     const bool admit = (it - last_admit) >= std::max(opt.admit_every, 1);
     if (admit) last_admit = it;
     const auto ps = reduce<5>([&](std::size_t k, std::array<double, 5>& a) {
-      const double gk = g[k] - shift;
-      double v = in_contact[k] ? p[k] - tau * t[k] : 0.0;
+      const double gk = gap[k] - shift, pk = p_scale * p[k];
+      double v = in_contact[k] ? pk - tau * t[k] : 0.0;
       if (v < 0) {
         v = 0;
         a[1] += 1;  // a point left the contact
@@ -319,7 +378,7 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
         }
       }
       a[0] += v;
-      a[4] += std::abs(v - p[k]);
+      a[4] += std::abs(v - pk);
       p[k] = v;
       in_contact[k] = v > 0;
     });
@@ -345,21 +404,6 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
     }
   }
   if (scale != 1.0) for_each([&](std::size_t k) { p[k] *= scale; });
-  if (res.converged) {
-    if (history_kind != int(load_control)) history_count = 0;
-    history_kind = int(load_control);
-    std::swap(p_before, p_last);
-    p_last = p;
-    c_before = c_last;
-    c_last = target;
-    ++history_count;
-  }
-  if (!res.converged && res.message.empty())
-    res.message = "spectral normal contact did not converge in " + std::to_string(opt.max_iterations) +
-                  " iterations (last error " + (res.history.empty() ? "-" : std::to_string(res.history.back())) + ")";
-  summarise(d, res);
-  res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return res;
 }
 
 }  // namespace wr
