@@ -133,8 +133,8 @@ void save_wisdom_if_grown(const std::string& before) {
 
 template <class Real>
 BasicRealFft2d<Real>::BasicRealFft2d(std::size_t nx, std::size_t ny, int threads, Real* external_real,
-                                     FftPlanning planning)
-    : nx_(nx), ny_(ny) {
+                                     FftPlanning planning, FftInput input)
+    : nx_(nx), ny_(ny), destroys_input_(input == FftInput::destroy) {
   using Api = FftwApi<Real>;
   // FFTW keeps its thread support process-wide; initialising it twice is harmless but
   // call_once keeps it cheap.
@@ -149,7 +149,7 @@ BasicRealFft2d<Real>::BasicRealFft2d(std::size_t nx, std::size_t ny, int threads
   Api::plan_with_nthreads(nx * ny >= (1u << 16) ? threads : 1);
   auto* c = reinterpret_cast<typename Api::Complex*>(spec_);
   const bool measure = planning == FftPlanning::measure;
-  const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+  const unsigned flags = (measure ? FFTW_MEASURE : FFTW_ESTIMATE) | (destroys_input_ ? FFTW_DESTROY_INPUT : 0u);
   std::string before;
   if (measure) {
     import_wisdom_once<Real>();
@@ -184,9 +184,9 @@ void BasicRealFft2d<Real>::backward() {
 
 template <class Real>
 void BasicRealFft2d<Real>::forward_from(const Real* in) {
-  auto* x = const_cast<Real*>(in);  // r2c plans preserve their input
+  auto* x = const_cast<Real*>(in);  // r2c plans preserve their input unless destroys_input_
   if (x == real_) return forward();
-  if (FftwApi<Real>::alignment_of(x) != FftwApi<Real>::alignment_of(real_)) {
+  if (destroys_input_ || FftwApi<Real>::alignment_of(x) != FftwApi<Real>::alignment_of(real_)) {
     std::copy(in, in + nx_ * ny_, real_);
     return forward();
   }

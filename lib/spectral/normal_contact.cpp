@@ -175,8 +175,9 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
   planning = plans;
   w.assign(n, 0.0);
   z.assign(n, 0.0f);
-  fft_w = std::make_unique<RealFft2d>(nx, ny, threads, w.data(), planning);
-  fft_z = std::make_unique<RealFft2dSingle>(nx, ny, threads, z.data(), planning);
+  // Both are convolutions in place: their input may be destroyed.
+  fft_w = std::make_unique<RealFft2d>(nx, ny, threads, w.data(), planning, FftInput::destroy);
+  fft_z = std::make_unique<RealFft2dSingle>(nx, ny, threads, z.data(), planning, FftInput::destroy);
   std::fill(w.begin(), w.end(), 0.0);  // measuring wrote into them
   std::fill(z.begin(), z.end(), 0.0f);
   const std::size_t nxh = fft_w->nxh();
