@@ -185,5 +185,29 @@ TEST(Fft, SinglePrecisionMatchesDoubleToFloatRounding) {
   std::remove((wisdom + "-single").c_str());
 }
 
+// A plan allowed to destroy its input transforms as a preserving one (to rounding), and
+// forward_from() on it never writes into the caller's array.
+TEST(Fft, DestroyingPlansTransformAlikeAndSpareForeignInput) {
+  const std::size_t nx = 64, ny = 48, n = nx * ny;
+  RealFft2d keep(nx, ny, 1, nullptr, FftPlanning::estimate);
+  RealFft2d lose(nx, ny, 1, nullptr, FftPlanning::estimate, FftInput::destroy);
+  std::vector<double> in(n);
+  for (std::size_t k = 0; k < n; ++k) in[k] = std::cos(0.21 * double(k)) + 0.05 * double(k % 11);
+  std::copy(in.begin(), in.end(), keep.real());
+  keep.forward();
+  EXPECT_TRUE(std::equal(in.begin(), in.end(), keep.real()));  // the preserving plan kept it
+  const std::vector<double> foreign = in;
+  lose.forward_from(foreign.data());
+  EXPECT_EQ(foreign, in);
+  double worst = 0, peak = 0;
+  for (std::size_t k = 0; k < ny * keep.nxh(); ++k) {
+    worst = std::max(worst, std::abs(keep.spectrum()[k] - lose.spectrum()[k]));
+    peak = std::max(peak, std::abs(keep.spectrum()[k]));
+  }
+  EXPECT_LT(worst, 1e-12 * peak);
+  lose.backward();
+  for (std::size_t k = 0; k < n; ++k) ASSERT_NEAR(lose.real()[k] / double(n), in[k], 1e-12);
+}
+
 }  // namespace
 }  // namespace wr
