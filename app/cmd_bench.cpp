@@ -291,7 +291,7 @@ Command add_bench(CLI::App& root) {
   ss->add_option("--sizes", c->spectral_sizes, "grid sizes N")->capture_default_str();
   ss->add_option("--loads", c->spectral_loads, "loads per surface")->capture_default_str();
   ss->add_option("--threads", c->threads, "FFT threads (default: all cores)");
-  ss->add_option("--tol", c->spectral_tol, "relative l1 pressure change that ends a solve")->capture_default_str();
+  ss->add_option("--tol", c->spectral_tol, "relative l1 pressure change that ends a solve (>= 1e-9: single-precision CG)")->capture_default_str();
   ss->add_option("--admit-every", c->admit_every, "iterations between admissions of penetrating points")
       ->capture_default_str();
   ss->add_option("--json", c->json, "write the results as JSON");

@@ -497,7 +497,8 @@ Command add_contact(CLI::App& root) {
   s->add_option("--thickness", c->thickness,
                 "spectral model: layer thickness in m, or inf for a half-space (default: the block height)");
   s->add_option("--spectral-tol", c->spectral_tol,
-                "spectral model: relative l1 pressure change per iteration that ends a step")
+                "spectral model: relative l1 pressure change per iteration that ends a step (>= 1e-9: the CG runs in "
+                "single precision, below it in double)")
       ->capture_default_str();
   s->add_option("--threads", c->threads, "spectral model: FFT threads (default: all cores)");
   s->add_option("--ux", c->opt.ux, "final tangential displacement of the top face (shear), m");

@@ -46,7 +46,7 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_option("--nu", c.scene.poisson, "Poisson's ratio")->capture_default_str();
   s.add_option("--height", c.scene.height, "block height (spectral: layer thickness), m; 0 = a cube")->capture_default_str();
   s.add_option("--tol", c.scene.tolerance, "relative change per geometry (Signorini) iteration")->capture_default_str();
-  s.add_option("--spectral-tol", c.scene.spectral_tolerance, "spectral normal solver tolerance")->capture_default_str();
+  s.add_option("--spectral-tol", c.scene.spectral_tolerance, "spectral normal solver tolerance (>= 1e-9: single-precision CG)")->capture_default_str();
   s.add_option("--max-iterations", c.scene.max_iterations, "per step (0: the model's default)");
   s.add_option("--extrapolate", c.scene.extrapolate_every,
                "fem: slow-mode jump every N Signorini iterations (as `contact --extrapolate`; 0: off)")
