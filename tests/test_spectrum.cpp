@@ -209,5 +209,34 @@ TEST(Fft, DestroyingPlansTransformAlikeAndSpareForeignInput) {
   for (std::size_t k = 0; k < n; ++k) ASSERT_NEAR(lose.real()[k] / double(n), in[k], 1e-12);
 }
 
+// An in-place plan reads and writes rows padded to row_stride() = 2 (nx/2 + 1) and gives the
+// transform of a separate-buffer plan (to rounding), odd row length included.
+TEST(Fft, InPlacePlansUsePaddedRowsAndTransformAlike) {
+  for (std::size_t nx : {64u, 45u}) {
+    const std::size_t ny = 36, n = nx * ny;
+    RealFft2d ref(nx, ny, 1, nullptr, FftPlanning::estimate);
+    RealFft2d in_place(nx, ny, 1, nullptr, FftPlanning::estimate, FftInput::in_place);
+    const std::size_t stride = in_place.row_stride();
+    EXPECT_EQ(stride, 2 * (nx / 2 + 1));
+    EXPECT_EQ(ref.row_stride(), nx);
+    EXPECT_EQ(static_cast<void*>(in_place.spectrum()), static_cast<void*>(in_place.real()));
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i)
+        ref.real()[j * nx + i] = in_place.real()[j * stride + i] = std::sin(0.13 * double(i) + 0.7 * double(j)) + 0.1 * double((i * j) % 5);
+    ref.forward();
+    in_place.forward();
+    double worst = 0, peak = 0;
+    for (std::size_t k = 0; k < ny * ref.nxh(); ++k) {
+      worst = std::max(worst, std::abs(ref.spectrum()[k] - in_place.spectrum()[k]));
+      peak = std::max(peak, std::abs(ref.spectrum()[k]));
+    }
+    EXPECT_LT(worst, 1e-12 * peak) << "nx " << nx;
+    in_place.backward();
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i)
+        ASSERT_NEAR(in_place.real()[j * stride + i] / double(n), ref.real()[j * nx + i], 1e-12) << "nx " << nx;
+  }
+}
+
 }  // namespace
 }  // namespace wr

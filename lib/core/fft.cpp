@@ -134,7 +134,7 @@ void save_wisdom_if_grown(const std::string& before) {
 template <class Real>
 BasicRealFft2d<Real>::BasicRealFft2d(std::size_t nx, std::size_t ny, int threads, Real* external_real,
                                      FftPlanning planning, FftInput input)
-    : nx_(nx), ny_(ny), destroys_input_(input == FftInput::destroy) {
+    : nx_(nx), ny_(ny), destroys_input_(input != FftInput::preserve), in_place_(input == FftInput::in_place) {
   using Api = FftwApi<Real>;
   // FFTW keeps its thread support process-wide; initialising it twice is harmless but
   // call_once keeps it cheap.
@@ -142,8 +142,9 @@ BasicRealFft2d<Real>::BasicRealFft2d(std::size_t nx, std::size_t ny, int threads
   std::call_once(init, [] { Api::init_threads(); });
   if (threads <= 0) threads = hardware_threads();
   owns_real_ = external_real == nullptr;
-  real_ = owns_real_ ? static_cast<Real*>(allocate_big(nx * ny * sizeof(Real))) : external_real;
-  spec_ = static_cast<std::complex<Real>*>(allocate_big(ny * nxh() * sizeof(std::complex<Real>)));
+  real_ = owns_real_ ? static_cast<Real*>(allocate_big(ny * row_stride() * sizeof(Real))) : external_real;
+  spec_ = in_place_ ? reinterpret_cast<std::complex<Real>*>(real_)
+                    : static_cast<std::complex<Real>*>(allocate_big(ny * nxh() * sizeof(std::complex<Real>)));
 
   // Small transforms gain nothing from threads.
   Api::plan_with_nthreads(nx * ny >= (1u << 16) ? threads : 1);
@@ -169,8 +170,8 @@ template <class Real>
 BasicRealFft2d<Real>::~BasicRealFft2d() {
   if (fwd_) FftwApi<Real>::destroy(fwd_);
   if (bwd_) FftwApi<Real>::destroy(bwd_);
-  if (owns_real_) free_big(real_, nx_ * ny_ * sizeof(Real));
-  free_big(spec_, ny_ * nxh() * sizeof(std::complex<Real>));
+  if (owns_real_) free_big(real_, ny_ * row_stride() * sizeof(Real));
+  if (!in_place_) free_big(spec_, ny_ * nxh() * sizeof(std::complex<Real>));
 }
 
 template <class Real>
@@ -187,7 +188,7 @@ void BasicRealFft2d<Real>::forward_from(const Real* in) {
   auto* x = const_cast<Real*>(in);  // r2c plans preserve their input unless destroys_input_
   if (x == real_) return forward();
   if (destroys_input_ || FftwApi<Real>::alignment_of(x) != FftwApi<Real>::alignment_of(real_)) {
-    std::copy(in, in + nx_ * ny_, real_);
+    std::copy(in, in + ny_ * row_stride(), real_);
     return forward();
   }
   FftwApi<Real>::execute_r2c(fwd_, x, reinterpret_cast<typename FftwApi<Real>::Complex*>(spec_));

@@ -15,17 +15,24 @@
 namespace wr {
 
 struct SpectralNormalContact::Impl {
-  std::size_t nx = 0, ny = 0, n = 0;
+  std::size_t nx = 0, ny = 0, n = 0;  // n: grid points
+  // Every grid array below is laid out as FFTW's in-place transforms need it (FftInput::in_place):
+  // rows padded to nxp = 2 (nx/2 + 1) values, np = ny nxp in all. The passes run over the
+  // padding too: it holds no pressure, is never in contact, and its obstacle lies at
+  // kPadHeight, so far below that it is never penetrated whatever w holds there.
+  std::size_t nxp = 0, np = 0;
+  static constexpr double kPadHeight = -1e300;
   ElasticBody body;
   BigVector zo;               // m, obstacle shifted to max 0
   std::vector<double> kernel;  // C(q) / n over the half spectrum (ny x nxh): FFTW is unnormalised
   std::vector<float> inverse_kernel;  // 1 / (C(q) n); 0 for the half-space's mean mode
   // 2 MiB-aligned huge pages: fewer TLB misses in the streaming passes (20 % at 2048^2).
   BigVector p;
-  BigVector g;  // the returned gap, double whatever the CG's precision
+  BigVector pressure_out, gap_out;  // the returned pressure and gap, unpadded, double
   std::vector<unsigned char> in_contact;  // p > 0, kept beside p: a byte per point is cheap to stream
   // w = C p, z (preconditioned residual), r = C t: each transformed in place by its own FFT
-  // plan on its own (page-aligned) array, so no convolution copies its input or output.
+  // plan on its own (page-aligned) array, so no convolution copies its input or output, and
+  // no spectrum buffer beside it is streamed.
   // z is single precision: a preconditioner need only be a fixed SPD operator, and rounding
   // at 1e-7 of z (relative, so shrinking with the residual) does not change the solution, which
   // is judged on the double-precision gap; its transforms take 0.6x the time of double ones.
@@ -39,7 +46,7 @@ struct SpectralNormalContact::Impl {
   template <class Real>
   struct CgWork {
     BigArray<Real> g, t, r;
-    std::unique_ptr<BasicRealFft2d<Real>> fft_r;  // transforms r in place (t -> r's spectrum -> r)
+    std::unique_ptr<BasicRealFft2d<Real>> fft_r;  // transforms r in place (t is copied into r first)
     std::vector<Real> kernel;                     // C(q) / n, as `kernel`
   };
   CgWork<float> cg_single;
@@ -52,8 +59,8 @@ struct SpectralNormalContact::Impl {
       if constexpr (std::is_same_v<Real, float>) return cg_single; else return cg_double;
     }();
     if (!c.fft_r) {
-      for (auto* v : {&c.g, &c.t, &c.r}) v->assign(n, Real(0));
-      c.fft_r = std::make_unique<BasicRealFft2d<Real>>(nx, ny, threads, c.r.data(), planning);
+      for (auto* v : {&c.g, &c.t, &c.r}) v->assign(np, Real(0));
+      c.fft_r = std::make_unique<BasicRealFft2d<Real>>(nx, ny, threads, c.r.data(), planning, FftInput::in_place);
       c.kernel.assign(kernel.begin(), kernel.end());
     }
     return c;
@@ -80,14 +87,14 @@ struct SpectralNormalContact::Impl {
   // results do not depend on the thread count (lib/core/parallel.hpp).
   template <class F>
   void for_each(F&& f) const {
-    parallel_chunks(n, chunks(), threads, [&](std::size_t, std::size_t b, std::size_t e) {
+    parallel_chunks(np, chunks(), threads, [&](std::size_t, std::size_t b, std::size_t e) {
       for (std::size_t k = b; k < e; ++k) f(k);
     });
   }
   template <std::size_t K, class F>
   std::array<double, K> reduce(F&& f) const {
     std::vector<std::array<double, K>> part(chunks(), std::array<double, K>{});
-    parallel_chunks(n, chunks(), threads, [&](std::size_t c, std::size_t b, std::size_t e) {
+    parallel_chunks(np, chunks(), threads, [&](std::size_t c, std::size_t b, std::size_t e) {
       std::array<double, K> a{};
       for (std::size_t k = b; k < e; ++k) f(k, a);
       part[c] = a;
@@ -98,7 +105,7 @@ struct SpectralNormalContact::Impl {
     return sum;
   }
   // One chunk per 64k points, at most 64: small grids stay on one thread.
-  std::size_t chunks() const { return std::clamp<std::size_t>(n >> 16, 1, 64); }
+  std::size_t chunks() const { return std::clamp<std::size_t>(np >> 16, 1, 64); }
 
   // The array of `f` <- (multiplier `by`) * itself, a periodic convolution.
   template <class Real>
@@ -117,28 +124,31 @@ struct SpectralNormalContact::Impl {
     f.backward();
   }
   void update_w() {  // w = C p
-    std::memcpy(w.data(), p.data(), n * sizeof(double));
+    std::memcpy(w.data(), p.data(), np * sizeof(double));
     convolve_in_place(*fft_w, kernel);
   }
 
   SpectralNormalResult solve(bool load_control, double target, const SpectralOptions& opt);
 
-  // Final gap of the returned pressure and the summary numbers.
+  // Final gap of the returned pressure, both unpadded, and the summary numbers.
   void summarise(double d, SpectralNormalResult& res) {
     update_w();
     double sum_p = 0, sum_g = 0, pen = 0, cgap = 0;
     std::size_t nc = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      g[k] = w[k] - d - zo[k];
-      sum_p += p[k];
-      if (p[k] > 0) {
-        ++nc;
-        cgap = std::max(cgap, std::abs(g[k]));
-      } else {
-        pen = std::max(pen, -g[k]);
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i) {
+        const std::size_t k = j * nxp + i, o = j * nx + i;
+        const double gk = gap_out[o] = w[k] - d - zo[k];
+        pressure_out[o] = p[k];
+        sum_p += p[k];
+        if (p[k] > 0) {
+          ++nc;
+          cgap = std::max(cgap, std::abs(gk));
+        } else {
+          pen = std::max(pen, -gk);
+        }
+        sum_g += gk;
       }
-      sum_g += g[k];
-    }
     res.mean_pressure = sum_p / double(n);
     res.approach = d;
     res.area_fraction = double(nc) / double(n);
@@ -167,17 +177,19 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
   nx = obstacle.nx;
   ny = obstacle.ny;
   n = nx * ny;
+  nxp = 2 * (nx / 2 + 1);
+  np = ny * nxp;
   body = b;
   threads = th;
   top = top_height;
-  zo.assign(obstacle.h.begin(), obstacle.h.end());
-  for (double& v : zo) v -= top;
+  zo.assign(np, kPadHeight);
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) zo[j * nxp + i] = obstacle.h[j * nx + i] - top;
   planning = plans;
-  w.assign(n, 0.0);
-  z.assign(n, 0.0f);
-  // Both are convolutions in place: their input may be destroyed.
-  fft_w = std::make_unique<RealFft2d>(nx, ny, threads, w.data(), planning, FftInput::destroy);
-  fft_z = std::make_unique<RealFft2dSingle>(nx, ny, threads, z.data(), planning, FftInput::destroy);
+  w.assign(np, 0.0);
+  z.assign(np, 0.0f);
+  fft_w = std::make_unique<RealFft2d>(nx, ny, threads, w.data(), planning, FftInput::in_place);
+  fft_z = std::make_unique<RealFft2dSingle>(nx, ny, threads, z.data(), planning, FftInput::in_place);
   std::fill(w.begin(), w.end(), 0.0);  // measuring wrote into them
   std::fill(z.begin(), z.end(), 0.0f);
   const std::size_t nxh = fft_w->nxh();
@@ -194,8 +206,9 @@ void SpectralNormalContact::Impl::setup(const HeightMap& obstacle, double top_he
       inverse_kernel[j * nxh + i] = float((std::isfinite(c) ? 1 / c : 0.0) / double(n));
     }
   }
-  for (auto* v : {&p, &g}) v->assign(n, 0.0);
-  in_contact.assign(n, 0);
+  p.assign(np, 0.0);
+  for (auto* v : {&pressure_out, &gap_out}) v->assign(n, 0.0);
+  in_contact.assign(np, 0);
 }
 
 
@@ -204,12 +217,13 @@ SpectralNormalContact::~SpectralNormalContact() = default;
 void SpectralNormalContact::set_heights(const std::vector<double>& heights) {
   Impl& m = *impl_;
   if (heights.size() != m.n) throw std::invalid_argument("set_heights: the grid changed");
-  for (std::size_t k = 0; k < m.n; ++k) m.zo[k] = heights[k] - m.top;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i) m.zo[j * m.nxp + i] = heights[j * m.nx + i] - m.top;
   m.history_count = 0;  // solutions on another geometry: no extrapolation from them
 }
 
-const BigVector& SpectralNormalContact::pressure() const { return impl_->p; }
-const BigVector& SpectralNormalContact::gap() const { return impl_->g; }
+const BigVector& SpectralNormalContact::pressure() const { return impl_->pressure_out; }
+const BigVector& SpectralNormalContact::gap() const { return impl_->gap_out; }
 std::size_t SpectralNormalContact::nx() const { return impl_->nx; }
 std::size_t SpectralNormalContact::ny() const { return impl_->ny; }
 
@@ -244,7 +258,7 @@ SpectralNormalResult SpectralNormalContact::Impl::solve(bool load_control, doubl
     if (have_solution && sum_p > 0)
       for_each([&](std::size_t k) { p[k] *= target * nd / sum_p; });
     else
-      std::fill(p.begin(), p.end(), target);
+      for_each([&](std::size_t k) { p[k] = zo[k] == kPadHeight ? 0.0 : target; });
   } else if (!have_solution || sum_p <= 0) {
     const double c0 = body.thickness / body.p_wave_modulus();
     for_each([&](std::size_t k) { p[k] = std::max(0.0, target + zo[k]) / c0; });
@@ -340,9 +354,9 @@ void SpectralNormalContact::Impl::iterate(CgWork<Real>& cg, bool load_control, d
     const double gz = zs[1];
     const double beta = restart ? 0.0 : gz / g_old;
     g_old = gz;
-    for_each([&](std::size_t k) { t[k] = in_contact[k] ? Real((z[k] - zshift) + beta * t[k]) : Real(0); });
-    cg.fft_r->forward_from(t.data());  // r = C t, transformed straight from t
-    multiply_and_invert(*cg.fft_r, cg.kernel);
+    // t is written into r's array too, which the transform in place then overwrites with C t.
+    for_each([&](std::size_t k) { r[k] = t[k] = in_contact[k] ? Real((z[k] - zshift) + beta * t[k]) : Real(0); });
+    convolve_in_place(*cg.fft_r, cg.kernel);  // r = C t
     ++res.fft_pairs;
     // r is shifted to a zero mean over the contact set under load control (the approach
     // absorbs the mean): (r - rshift).t = r.t - rshift sum t, and (g - shift).t likewise.
