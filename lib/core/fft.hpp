@@ -61,7 +61,7 @@ class BasicRealFft2d {
   // `external_real` (ny * row_stride() values, owned by the caller and alive as long as this object) is
   // used as the real array instead of an internal one: it saves a copy and, more importantly
   // on virtual machines, the first-touch page faults of a second large buffer. forward()
-  // leaves it intact (out-of-place r2c preserves its input).
+  // leaves it intact unless `input` allows otherwise (FftInput).
   BasicRealFft2d(std::size_t nx, std::size_t ny, int threads = 0, Real* external_real = nullptr,
                  FftPlanning planning = FftPlanning::estimate, FftInput input = FftInput::preserve);
   ~BasicRealFft2d();

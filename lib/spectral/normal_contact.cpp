@@ -56,7 +56,10 @@ struct SpectralNormalContact::Impl {
   template <class Real>
   CgWork<Real>& cg_work() {
     CgWork<Real>& c = [this]() -> CgWork<Real>& {
-      if constexpr (std::is_same_v<Real, float>) return cg_single; else return cg_double;
+      if constexpr (std::is_same_v<Real, float>)
+        return cg_single;
+      else
+        return cg_double;
     }();
     if (!c.fft_r) {
       for (auto* v : {&c.g, &c.t, &c.r}) v->assign(np, Real(0));
