@@ -26,6 +26,7 @@ bench: build
 	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3 --files
 	$(BUILD_DIR)/bin/wetroad bench water --size 1024
 	$(BUILD_DIR)/bin/wetroad bench spectral --sizes 1024 2048
+	$(BUILD_DIR)/bin/wetroad bench spectral-shear --size 512
 	scripts/bench-sweep-mpi.sh $(BUILD_DIR)/bin/wetroad $(BUILD_DIR)/bench-sweep-mpi
 
 validate: build

@@ -1,4 +1,4 @@
-// `wetroad bench speed|summits`: benchmarks and long validations (bench/bench_harness.hpp).
+// `wetroad bench ...`: benchmarks and long validations (bench/bench_harness.hpp).
 #include <mpi.h>
 
 #include <cmath>
@@ -31,6 +31,9 @@ struct BenchCli {
   int spectral_loads = 10;
   double spectral_tol = 1e-8;
   int admit_every = 8;
+  std::size_t shear_n = 512;
+  double shear_uz = 5e-5, shear_ux = 2e-5;  // m: 5 h0 (A/A0 about 0.1) and 2 h0 of the 1 cm surface
+  int shear_steps = 4;
   std::vector<std::size_t> kappa_sizes = {256, 512, 1024};
   std::size_t kappa_band = 256;
   int kappa_seeds = 4;
@@ -188,6 +191,29 @@ int run_spectral_speed(const BenchCli& c) {
   return 0;
 }
 
+int run_spectral_shear(const BenchCli& c) {
+  const auto r = bench::spectral_shear(c.shear_n, c.shear_uz, c.shear_ux, c.shear_steps, c.threads, c.spectral_tol);
+  std::printf("spectral shear test on %zu^2 (layer %.3g m thick over a 1 cm period, rms slope %.3f; uz %.3g m then "
+              "ux %.3g m, %d steps each; tol %.0e, CG in %s precision)\n",
+              c.shear_n, r["thickness"].get<double>(), r["rms_slope"].get<double>(), c.shear_uz, c.shear_ux,
+              c.shear_steps, c.spectral_tol, r["cg_precision"].get<std::string>().c_str());
+  std::printf("  %4s %10s %10s %8s %9s %9s %8s %9s\n", "step", "uz [m]", "ux [m]", "A/A0", "mu", "geometry", "CG",
+              "wall [s]");
+  int k = 0;
+  for (const auto& s : r["steps"])
+    std::printf("  %4d %10.4g %10.4g %8.4f %9.2e %9d %8d %9.3f%s\n", ++k, s["uz"].get<double>(), s["ux"].get<double>(),
+                s["area_fraction"].get<double>(), s["mu"].get<double>(), s["geometry_iterations"].get<int>(),
+                s["cg_iterations"].get<int>(), s["wall_s"].get<double>(), s["converged"].get<bool>() ? "" : "  NOT CONVERGED");
+  std::printf("  total %.2f s (setup %.2f s), %d geometry and %d CG iterations, %d threads; FFT pair %.4g s "
+              "(planning %.2f s, cached)\n",
+              r["wall_s"].get<double>(), r["setup_s"].get<double>(), r["geometry_iterations"].get<int>(),
+              r["cg_iterations"].get<int>(), r["threads"].get<int>(), r["fft_pair_s"].get<double>(),
+              r["planning_s"].get<double>());
+  std::printf("  (mu of a periodic layer is 0 up to lattice effects: this measures speed, not friction)\n");
+  if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
+  return r["converged"].get<bool>() ? 0 : 1;
+}
+
 int run_kappa(const BenchCli& c) {
   const auto rows = bench::spectral_kappa(c.kappa_sizes, c.kappa_band, c.kappa_seeds, c.threads, c.period_effect);
   if (c.period_effect)
@@ -295,6 +321,16 @@ Command add_bench(CLI::App& root) {
   ss->add_option("--admit-every", c->admit_every, "iterations between admissions of penetrating points")
       ->capture_default_str();
   ss->add_option("--json", c->json, "write the results as JSON");
+  CLI::App* sh = b->add_subcommand("spectral-shear", "Speed of the spectral shear test (Problem A then B) on an N x N surface.");
+  sh->add_option("--size", c->shear_n, "grid size N")->capture_default_str();
+  sh->add_option("--uz", c->shear_uz, "final approach of the far face, m (surface: h0 1e-5 m over 1 cm)")
+      ->capture_default_str();
+  sh->add_option("--ux", c->shear_ux, "final tangential displacement of the far face, m")->capture_default_str();
+  sh->add_option("--steps", c->shear_steps, "steps of each phase")->capture_default_str();
+  sh->add_option("--threads", c->threads, "FFT threads (default: all cores)");
+  sh->add_option("--tol", c->spectral_tol, "relative l1 pressure change that ends a solve (>= 1e-9: single-precision CG)")
+      ->capture_default_str();
+  sh->add_option("--json", c->json, "write the results as JSON");
   CLI::App* ka = b->add_subcommand("kappa", "Low-pressure kappa and the grid convergence of A/A0, spectral half-space.");
   ka->add_option("--sizes", c->kappa_sizes, "grid sizes N sampling the same surface")->capture_default_str();
   ka->add_option("--band", c->kappa_band, "q1 = the Nyquist wavenumber of a band x band grid")->capture_default_str();
@@ -320,11 +356,12 @@ Command add_bench(CLI::App& root) {
   he->add_option("--uz", c->hertz_uz, "top displacement, m")->capture_default_str();
   he->add_option("--layers", c->hertz_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
   he->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su, wa, co, he, ss, ka, vs, ac] {
+  return {b, [c, sp, su, wa, co, he, ss, sh, ka, vs, ac] {
             if (ac->parsed()) return run_accuracy(*c);
             if (vs->parsed()) return run_spectral_vs_fem(*c);
             if (he->parsed()) return run_hertz(*c);
             if (ss->parsed()) return run_spectral_speed(*c);
+            if (sh->parsed()) return run_spectral_shear(*c);
             if (ka->parsed()) return run_kappa(*c);
             if (sp->parsed()) return run_speed(*c);
             if (su->parsed()) return run_summits(*c);

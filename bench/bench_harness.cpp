@@ -396,6 +396,27 @@ double rms_slope_spectral(const HeightMap& m, int threads) {
   return std::sqrt(s);
 }
 
+// The floor of the spectral benches: one forward + backward transform of an n x n grid with
+// the plans the solver uses (measured here when the machine's wisdom file lacks them).
+struct FftFloor {
+  double planning_s = 0, pair_s = 0;
+};
+FftFloor fft_pair_floor(std::size_t n, int threads) {
+  FftFloor f;
+  double t0 = now();
+  RealFft2d fft(n, n, threads, nullptr, FftPlanning::measure);
+  f.planning_s = now() - t0;
+  std::fill(fft.real(), fft.real() + n * n, 1.0);
+  const int reps = 10;
+  t0 = now();
+  for (int r = 0; r < reps; ++r) {
+    fft.forward();
+    fft.backward();
+  }
+  f.pair_s = (now() - t0) / reps;
+  return f;
+}
+
 }  // namespace
 
 nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads, double tolerance,
@@ -405,20 +426,8 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
     const HeightMap m = band_limited_surface(n, n, 7, threads);
     const ElasticBody body{1.0, 0.45};
     const double slope = rms_slope_spectral(m, threads);
-    // The floor: one forward + backward transform of the grid, with the plans the solver uses
-    // (measured here when the machine's wisdom file lacks them).
-    double t_plan = now();
-    RealFft2d fft(n, n, threads, nullptr, FftPlanning::measure);
-    t_plan = now() - t_plan;
-    std::fill(fft.real(), fft.real() + n * n, 1.0);
-    const int reps = 10;
+    const FftFloor floor = fft_pair_floor(n, threads);
     double t0 = now();
-    for (int r = 0; r < reps; ++r) {
-      fft.forward();
-      fft.backward();
-    }
-    const double fft_pair = (now() - t0) / reps;
-    t0 = now();
     SpectralNormalContact solver(m, body, threads);
     const double setup = now() - t0;
     SpectralOptions opt;
@@ -445,7 +454,7 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
                     {"loads", loads},
                     {"threads", threads > 0 ? threads : hardware_threads()},
                     {"rms_slope", slope},
-                    {"planning_s", t_plan},
+                    {"planning_s", floor.planning_s},
                     {"setup_s", setup},
                     {"solve_s", total},
                     {"iterations", iterations},
@@ -453,12 +462,58 @@ nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, 
                     {"tolerance", tolerance},
                     {"cg_precision", opt.single_precision_cg() ? "single" : "double"},
                     {"admit_every", admit_every},
-                    {"fft_pair_s", fft_pair},
+                    {"fft_pair_s", floor.pair_s},
                     {"s_per_iteration", total / std::max(iterations, 1)},
                     {"converged", all_converged},
                     {"steps", steps}});
   }
   return rows;
+}
+
+nlohmann::json spectral_shear(std::size_t n, double uz, double ux, int steps, int threads, double tolerance) {
+  const HeightMap m = band_limited_surface(n, n, 7, threads);
+  SpectralTestOptions opt;
+  opt.uz = uz;
+  opt.ux = ux;
+  opt.steps = opt.shear_steps = steps;
+  opt.shear = true;
+  opt.body = ElasticBody{1.0, 0.45, m.lx()};  // the layer as thick as the period: a cube's height
+  opt.solver.threads = threads;
+  opt.solver.tolerance = tolerance;
+  opt.rms_slope = rms_slope_spectral(m, threads);
+  const FftFloor floor = fft_pair_floor(n, threads);
+  int done = 0;
+  const SpectralTestResult r = run_spectral_contact_test(m, opt, [&](const ContactStep&) {
+    std::fprintf(stderr, "\r  %zu^2 shear test: step %d/%d", n, ++done, 2 * steps);
+  });
+  std::fprintf(stderr, "\n");
+  int geometry = 0, cg = 0;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ContactStep& s : r.steps) {
+    geometry += s.signorini_iterations;
+    cg += s.linear_iterations;
+    rows.push_back({{"uz", s.uz}, {"ux", s.ux}, {"mu", s.mu}, {"area_fraction", s.area_fraction},
+                    {"sigma_star", s.sigma_star}, {"geometry_iterations", s.signorini_iterations},
+                    {"cg_iterations", s.linear_iterations}, {"converged", s.converged}, {"wall_s", s.wall_s}});
+  }
+  return {{"n", n},
+          {"threads", threads > 0 ? threads : hardware_threads()},
+          {"thickness", opt.body.thickness},
+          {"rms_slope", opt.rms_slope},
+          {"uz", uz},
+          {"ux", ux},
+          {"steps_per_phase", steps},
+          {"tolerance", tolerance},
+          {"cg_precision", opt.solver.single_precision_cg() ? "single" : "double"},
+          {"geometry_tolerance", opt.geometry_tolerance},
+          {"planning_s", floor.planning_s},
+          {"fft_pair_s", floor.pair_s},
+          {"setup_s", r.wall_setup},
+          {"wall_s", r.wall_s},
+          {"geometry_iterations", geometry},
+          {"cg_iterations", cg},
+          {"converged", !r.failed},
+          {"steps", rows}};
 }
 
 nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads,

@@ -39,6 +39,13 @@ nlohmann::json hertz(const std::vector<int>& meshes, double radius, double uz, i
 nlohmann::json spectral_speed(const std::vector<std::size_t>& sizes, int loads, int threads, double tolerance,
                               int admit_every);
 
+// Speed of the spectral shear test (Problem A then B, sec. 4.2.2) on the n x n self-affine
+// surface of spectral_speed: a layer as thick as the period, its far face pressed by uz and then
+// moved by ux, `steps` steps each; total wall time, geometry and CG iterations, the FFT-pair
+// floor. The friction of the periodic layer is 0 up to lattice effects (translation invariance):
+// this measures speed, not mu.
+nlohmann::json spectral_shear(std::size_t n, double uz, double ux, int steps, int threads, double tolerance);
+
 // Low-pressure kappa (A/A0 = kappa sigma*, eq. 3.169) and the A/A0(sigma*) curve of the
 // spectral half-space on one band-limited self-affine surface per seed (H 0.7, q0 = 5 qL,
 // q1 = Nyquist of a band_n grid) sampled on each grid of `sizes`: the grid convergence of
