@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "lib/fem/adaptive_damping.hpp"
+#include "lib/fem/framed_stiffness.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/io/vtu_writer.hpp"
 
@@ -160,7 +161,9 @@ struct ElasticBlock::Impl {
   std::unique_ptr<GradedMesh> mesh;
   int rank = 0;
   PetscInt own_begin = 0, own_end = 0;  // owned node ids
-  Mat K = nullptr;
+  // Khat = R^T K R in the face nodes' current constraint frames, reduced in place by the
+  // active-set solves (lib/fem/framed_stiffness.hpp); K itself is not kept.
+  std::unique_ptr<FramedStiffness> stiffness;
   Vec u = nullptr;  // current displacement, carried from load step to load step
   // The whole contact face, gathered on every rank (normals need the neighbours' positions).
   VecScatter face_scatter = nullptr;
@@ -252,6 +255,7 @@ struct ElasticBlock::Impl {
       }
       std::vector<std::int32_t>().swap(v);
     }
+    Mat K = nullptr;
     check(MatCreate(comm, &K), "MatCreate");
     check(MatSetSizes(K, 3 * n_own, 3 * n_own, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
     check(MatSetType(K, MATAIJ), "MatSetType");
@@ -313,76 +317,7 @@ struct ElasticBlock::Impl {
     check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(idx.size()), &face_u), "VecCreateSeq");
     check(VecScatterCreate(u, is, face_u, nullptr, &face_scatter), "VecScatterCreate");
     ISDestroy(&is);
-  }
-
-  // Khat = R^T K R for block-diagonal R (Q of each face node, identity elsewhere), written
-  // into `khat` (same pattern as K): only rows of face nodes and rows coupled to face nodes
-  // change. q_all: 9 entries per face slot (all face nodes, every rank). Replaces MatPtAP,
-  // which at 3M dofs cost seconds and kept an intermediate product of K's size.
-  void rotate_matrix(Mat khat, const std::vector<double>& q_all) const {
-    check(MatCopy(K, khat, SAME_NONZERO_PATTERN), "MatCopy");
-    std::vector<PetscInt> cols;
-    std::vector<double> vals[3], out;
-    static const double eye[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    auto q_of = [&](std::int32_t node) {
-      const std::int32_t s = face_slot[std::size_t(node)];
-      return s < 0 ? eye : &q_all[9 * std::size_t(s)];
-    };
-    for (std::int32_t a = std::int32_t(own_begin); a < std::int32_t(own_end); ++a) {
-      PetscInt ncols;
-      const PetscInt* c;
-      const PetscScalar* v;
-      bool touches = face_slot[std::size_t(a)] >= 0;
-      for (int r = 0; r < 3; ++r) {
-        check(MatGetRow(K, dof(a, r), &ncols, &c, &v), "MatGetRow");
-        if (r == 0) {
-          cols.assign(c, c + ncols);
-          for (PetscInt k = 0; k < ncols && !touches; k += 3) touches = face_slot[std::size_t(c[k] / 3)] >= 0;
-        }
-        vals[r].assign(v, v + ncols);
-        check(MatRestoreRow(K, dof(a, r), &ncols, &c, &v), "MatRestoreRow");
-        if (!touches) break;
-      }
-      if (!touches) continue;
-      const PetscInt n = PetscInt(cols.size());
-      out.assign(3 * std::size_t(n), 0.0);
-      const double* qa = q_of(a);
-      for (PetscInt k = 0; k < n; k += 3) {
-        const double* qb = q_of(std::int32_t(cols[k] / 3));
-        double kb[9], t[9];  // K_ab, then Q_a^T K_ab, then (Q_a^T K_ab) Q_b
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) kb[3 * i + j] = vals[i][k + j];
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) t[3 * i + j] = qa[0 + i] * kb[j] + qa[3 + i] * kb[3 + j] + qa[6 + i] * kb[6 + j];
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j)
-            out[std::size_t(i) * n + k + j] = t[3 * i] * qb[j] + t[3 * i + 1] * qb[3 + j] + t[3 * i + 2] * qb[6 + j];
-      }
-      const PetscInt rows[3] = {dof(a, 0), dof(a, 1), dof(a, 2)};
-      check(MatSetValues(khat, 3, rows, n, cols.data(), out.data(), INSERT_VALUES), "MatSetValues");
-    }
-    check(MatAssemblyBegin(khat, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(khat, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  }
-
-  // v <- R^T v (transpose) or R v on the owned face nodes.
-  void rotate_vector(Vec v, const std::vector<double>& q_all, bool transpose) const {
-    PetscScalar* a;
-    check(VecGetArray(v, &a), "VecGetArray");
-    for (std::int32_t n = std::int32_t(own_begin); n < std::int32_t(own_end); ++n) {
-      const std::int32_t s = face_slot[std::size_t(n)];
-      if (s < 0) continue;
-      const double* q = &q_all[9 * std::size_t(s)];
-      double* x = a + 3 * std::size_t(n - own_begin);
-      double y[3];
-      for (int i = 0; i < 3; ++i)
-        y[i] = transpose ? q[i] * x[0] + q[3 + i] * x[1] + q[6 + i] * x[2]
-                         : q[3 * i] * x[0] + q[3 * i + 1] * x[1] + q[3 * i + 2] * x[2];
-      x[0] = y[0];
-      x[1] = y[1];
-      x[2] = y[2];
-    }
-    check(VecRestoreArray(v, &a), "VecRestoreArray");
+    stiffness = std::make_unique<FramedStiffness>(K, own_begin, own_end, face_slot);
   }
 
   void gather_face() const {
@@ -398,16 +333,15 @@ struct ElasticBlock::Impl {
     std::vector<double> fixed_vals;
     std::vector<PetscInt> top_rows[3];
   };
-  // The working set of a solve: the rotated matrix Khat = R^T K R, the reduced matrix A (active
-  // rows eliminated), vectors in the rotated frames, and CG preconditioned by GAMG.
+  // The working set of a solve: vectors in the rotated frames, and CG preconditioned by GAMG
+  // (the operator is `stiffness`).
   struct LinearSystems {
-    Mat khat = nullptr, a = nullptr;
     Vec uh = nullptr, b = nullptr, r = nullptr, diag = nullptr, ustar = nullptr;
     KSP ksp = nullptr;
     Vec before_jump = nullptr;  // the iterate before the last slow-mode jump
     std::vector<double> q_all, q_mine;  // constraint frames, 9 per face slot (all face nodes)
     int first_its = -1;                 // CG iterations with a fresh preconditioner
-    LinearSystems(MPI_Comm comm, Mat K, Vec like, std::size_t face_nodes);
+    LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes);
     ~LinearSystems();
     LinearSystems(const LinearSystems&) = delete;
     LinearSystems& operator=(const LinearSystems&) = delete;
@@ -495,7 +429,7 @@ ElasticBlock::~ElasticBlock() {
   if (impl_->face_scatter) VecScatterDestroy(&impl_->face_scatter);
   if (impl_->face_u) VecDestroy(&impl_->face_u);
   if (impl_->u) VecDestroy(&impl_->u);
-  if (impl_->K) MatDestroy(&impl_->K);
+  impl_->stiffness.reset();
   delete impl_;
 }
 
@@ -634,10 +568,8 @@ ElasticBlock::Impl::TopBoundary ElasticBlock::Impl::prescribe_top(const ContactL
   return t;
 }
 
-ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Mat K, Vec like, std::size_t face_nodes)
+ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes)
     : q_all(9 * face_nodes), q_mine(q_all.size()) {
-  check(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &khat), "MatDuplicate");
-  check(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, &a), "MatDuplicate");
   for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) check(VecDuplicate(like, v), "VecDuplicate");
   check(KSPCreate(comm, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
@@ -660,8 +592,6 @@ ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Mat K, Vec like,
 
 ElasticBlock::Impl::LinearSystems::~LinearSystems() {
   KSPDestroy(&ksp);
-  MatDestroy(&a);
-  MatDestroy(&khat);
   for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) VecDestroy(v);
 }
 
@@ -714,10 +644,10 @@ double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face,
     std::copy(q.begin(), q.end(), s.q_mine.begin() + 9 * (std::size_t(f.j) * (fnx + 1) + std::size_t(f.i)));
   }
   MPI_Allreduce(s.q_mine.data(), s.q_all.data(), int(s.q_all.size()), MPI_DOUBLE, MPI_SUM, comm);
-  rotate_matrix(s.khat, s.q_all);
-  check(MatGetDiagonal(s.khat, s.diag), "MatGetDiagonal");
+  stiffness->set_frames(s.q_all);
+  check(MatGetDiagonal(stiffness->mat(), s.diag), "MatGetDiagonal");
   check(VecCopy(u, s.uh), "VecCopy");
-  rotate_vector(s.uh, s.q_all, true);
+  stiffness->rotate_vector(s.uh, s.q_all, true);
   // Eliminated rows get a diagonal of the matrix's own scale, so that AMG smoothers see no
   // stray unit entries among stiffnesses of order E h.
   PetscScalar diag_sum;
@@ -753,11 +683,8 @@ ElasticBlock::Impl::ActiveSetOutcome ElasticBlock::Impl::solve_active_set(const 
     check(VecSetValues(s.uh, PetscInt(rows.size()), rows.data(), vals.data(), INSERT_VALUES), "VecSetValues");
     check(VecAssemblyBegin(s.uh), "VecAssemblyBegin");
     check(VecAssemblyEnd(s.uh), "VecAssemblyEnd");
-    check(MatCopy(s.khat, s.a, SAME_NONZERO_PATTERN), "MatCopy");
-    check(VecSet(s.b, 0.0), "VecSet");
-    check(MatZeroRowsColumns(s.a, PetscInt(rows.size()), rows.data(), control.unit_diag, s.uh, s.b),
-          "MatZeroRowsColumns");
-    check(KSPSetOperators(s.ksp, s.a, s.a), "KSPSetOperators");
+    stiffness->eliminate(rows, control.unit_diag, s.uh, s.b);
+    check(KSPSetOperators(s.ksp, stiffness->mat(), stiffness->mat()), "KSPSetOperators");
     PetscBool reused = PETSC_FALSE;
     KSPGetReusePreconditioner(s.ksp, &reused);
     if (reused) check(VecCopy(s.uh, s.ustar), "VecCopy");  // the start, in case the solve must be redone
@@ -779,6 +706,7 @@ ElasticBlock::Impl::ActiveSetOutcome ElasticBlock::Impl::solve_active_set(const 
       s.first_its = int(its);
       ++out.preconditioner_rebuilds;
     }
+    stiffness->restore();
     if (control.loose && it == 0) set_convergence_test(s.ksp, 0.0);
     // Keep the AMG hierarchy of the first system for the later ones of this load step (the
     // systems differ only by rotations and eliminated rows); rebuild it when CG slows down.
@@ -793,7 +721,7 @@ ElasticBlock::Impl::ActiveSetOutcome ElasticBlock::Impl::solve_active_set(const 
                     std::to_string(out.outer_iterations);
       return res;
     }
-    check(MatMult(s.khat, s.uh, s.r), "MatMult");  // reactions in the rotated frames
+    check(MatMult(stiffness->mat(), s.uh, s.r), "MatMult");  // reactions in the rotated frames
     const PetscScalar *ra, *ua, *da;
     VecGetArrayRead(s.r, &ra);
     VecGetArrayRead(s.uh, &ua);
@@ -874,7 +802,7 @@ double ElasticBlock::Impl::deepest_penetration(const std::vector<FaceNode>& face
 
 std::array<double, 3> ElasticBlock::Impl::top_forces(Vec v, const TopBoundary& top, Vec work) const {
   const PetscInt rstart = 3 * PetscInt(own_begin);
-  check(MatMult(K, v, work), "MatMult");
+  stiffness->multiply_unrotated(v, work);
   const PetscScalar* ra;
   VecGetArrayRead(work, &ra);
   double f[3] = {0, 0, 0};
@@ -963,7 +891,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   std::vector<FaceNode> face = m.owned_face_nodes();
   if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
   const Impl::TopBoundary top = m.prescribe_top(load);
-  Impl::LinearSystems s(m.comm, m.K, m.u, out.face_nodes);
+  Impl::LinearSystems s(m.comm, m.u, out.face_nodes);
 
   // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
   // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led
@@ -1065,7 +993,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     // the correction u* - u on the contact face relative to u* there (the l2 norm over the face
     // nodes = the lumped boundary mass norm on the uniform face).
     check(VecCopy(s.uh, s.ustar), "VecCopy");
-    m.rotate_vector(s.ustar, s.q_all, false);
+    m.stiffness->rotate_vector(s.ustar, s.q_all, false);
     const Impl::Correction corr = m.measure_correction(face, s.ustar, prev_corr);
     const double change = corr.change;
     if (load.follow_geometry) damping.after_correction(corr.cosine);

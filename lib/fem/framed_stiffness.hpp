@@ -1,0 +1,79 @@
+#pragma once
+// The block's stiffness in the face nodes' constraint frames, Khat = R^T K R, kept as one PETSc
+// matrix that is rotated and reduced in place (sec. 4.2, Algorithm 1, steps 2-3).
+//
+// Why in place: the solver used to hold K, Khat and the reduced matrix A (active rows and
+// columns eliminated) side by side, three matrices of K's size, about 70 % of the memory at
+// 3.2M dofs. Here there is one:
+// - set_frames(Q) turns Khat = R_old^T K R_old into R_new^T K R_new by the incremental rotation
+//   D = Q_old^T Q_new of each face node (orthogonal, so rounding does not grow: after a thousand
+//   rotations the entries differ from a direct R^T K R by ~1e-13 relative);
+// - eliminate(rows) zeroes those rows and columns like MatZeroRowsColumns, saving what it
+//   overwrites, and restore() writes it back (only rows and columns of face and top nodes are
+//   eliminated, so the saved part is small).
+// The values are edited through the AIJ arrays; the pattern never changes.
+//
+// Contract: K is an assembled AIJ matrix (MATSEQAIJ or MATMPIAIJ) with 3 dofs per node
+// (dof = 3 node + c), rows partitioned by whole nodes, and, per node, three rows with one
+// column pattern made of whole column nodes (what ElasticBlock assembles); the constructor
+// checks this and throws std::runtime_error otherwise. Rows given to eliminate() must be owned.
+// face_slot[node] is the node's index among the face nodes, or -1. Frames are 9 numbers per face
+// slot, row-major Q with Q e_z = the constraint normal (every rank holds all of them). All
+// methods but the accessors are collective.
+#include <petscmat.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace wr {
+
+class FramedStiffness {
+ public:
+  // Takes ownership of K, whose frames are the identity.
+  FramedStiffness(Mat K, PetscInt own_begin, PetscInt own_end, std::vector<std::int32_t> face_slot);
+  ~FramedStiffness();
+  FramedStiffness(const FramedStiffness&) = delete;
+  FramedStiffness& operator=(const FramedStiffness&) = delete;
+
+  Mat mat() const { return k_; }  // Khat, reduced while an elimination is in force
+  const std::vector<double>& frames() const { return frames_; }
+
+  // Khat <- R_new^T K R_new. Restores any elimination first.
+  void set_frames(const std::vector<double>& frames);
+  // Zeroes the rows and columns `rows` (global, owned), their diagonal set to unit_diag; b gets
+  // -Khat x on the other rows and unit_diag x on these (MatZeroRowsColumns's convention), so
+  // that the reduced system keeps x's values there. x and b are distinct vectors like Khat's.
+  void eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b);
+  // Undoes eliminate() (no-op without one).
+  void restore();
+  // out = K v in the original frames (v not changed; out distinct from v). Restores any
+  // elimination first.
+  void multiply_unrotated(Vec v, Vec out);
+  // v <- R^T v (transpose) or R v on the owned face nodes, with the given frames.
+  void rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const;
+
+ private:
+  struct Part {  // one AIJ block of the owned rows: the diagonal part, or the off-process part
+    Mat m = nullptr;
+    const PetscInt* ia = nullptr;  // CSR row starts (local rows)
+    const PetscInt* ja = nullptr;  // columns: local (diagonal part) or into garray
+    std::vector<PetscInt> saved_at;
+    std::vector<PetscScalar> saved;
+  };
+  PetscInt global_column(const Part& p, PetscInt j) const;
+  template <class F>
+  void edit_values(F&& f);  // f(part index, values array) for the parts, then state bumps
+
+  Mat k_ = nullptr;
+  PetscInt own_begin_ = 0, own_end_ = 0;  // owned node ids
+  std::vector<std::int32_t> face_slot_;
+  std::vector<double> frames_;  // 9 per face slot; identity at the start
+  Part parts_[2];
+  int n_parts_ = 1;
+  const PetscInt* garray_ = nullptr;  // global columns of the off-process part
+  Vec work_ = nullptr;
+  bool eliminated_ = false;
+  std::size_t face_slots_ = 0;
+};
+
+}  // namespace wr
