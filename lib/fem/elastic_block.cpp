@@ -13,6 +13,7 @@
 
 #include "lib/fem/adaptive_damping.hpp"
 #include "lib/fem/framed_stiffness.hpp"
+#include "lib/fem/petsc_session.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/io/vtu_writer.hpp"
 
@@ -20,10 +21,7 @@ namespace wr {
 
 namespace {
 
-// PETSc calls return error codes; turn them into exceptions with the call's name.
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw std::runtime_error(std::string("PETSc failed in ") + what + " (code " + std::to_string(ierr) + ")");
-}
+using petsc::check;
 
 // A solver default that a user's -option (command line, --petsc) overrides.
 void set_default_option(const char* name, const char* value) {

@@ -5,12 +5,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/fem/petsc_session.hpp"
+
 namespace wr {
 namespace {
 
-void check(PetscErrorCode e, const char* what) {
-  if (e) throw std::runtime_error(std::string("PETSc error in ") + what);
-}
+using petsc::check;
 
 using Block = std::array<double, 9>;  // row-major 3 x 3
 
@@ -31,19 +31,28 @@ bool is_identity(const Block& d) {
 
 FramedStiffness::FramedStiffness(Mat K, PetscInt own_begin, PetscInt own_end, std::vector<std::int32_t> face_slot)
     : k_(K), own_begin_(own_begin), own_end_(own_end), face_slot_(std::move(face_slot)) {
+  try {
+    map_structure();
+  } catch (...) {
+    MatDestroy(&k_);  // owned from the start, also when it is refused
+    throw;
+  }
+}
+
+void FramedStiffness::map_structure() {
   face_slots_ = std::size_t(std::count_if(face_slot_.begin(), face_slot_.end(), [](std::int32_t s) { return s >= 0; }));
   frames_.assign(9 * face_slots_, 0.0);
   for (std::size_t s = 0; s < face_slots_; ++s) frames_[9 * s] = frames_[9 * s + 4] = frames_[9 * s + 8] = 1.0;
   PetscBool mpi = PETSC_FALSE;
-  check(PetscObjectTypeCompare(PetscObject(K), MATMPIAIJ, &mpi), "PetscObjectTypeCompare");
+  check(PetscObjectTypeCompare(PetscObject(k_), MATMPIAIJ, &mpi), "PetscObjectTypeCompare");
   if (mpi) {
-    check(MatMPIAIJGetSeqAIJ(K, &parts_[0].m, &parts_[1].m, &garray_), "MatMPIAIJGetSeqAIJ");
+    check(MatMPIAIJGetSeqAIJ(k_, &parts_[0].m, &parts_[1].m, &garray_), "MatMPIAIJGetSeqAIJ");
     n_parts_ = 2;
   } else {
     PetscBool seq = PETSC_FALSE;
-    check(PetscObjectTypeCompare(PetscObject(K), MATSEQAIJ, &seq), "PetscObjectTypeCompare");
+    check(PetscObjectTypeCompare(PetscObject(k_), MATSEQAIJ, &seq), "PetscObjectTypeCompare");
     if (!seq) throw std::runtime_error("FramedStiffness: the stiffness must be an AIJ matrix");
-    parts_[0].m = K;
+    parts_[0].m = k_;
   }
   const PetscInt rows = 3 * (own_end_ - own_begin_);
   for (int p = 0; p < n_parts_; ++p) {

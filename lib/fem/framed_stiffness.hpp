@@ -29,7 +29,7 @@ namespace wr {
 
 class FramedStiffness {
  public:
-  // Takes ownership of K, whose frames are the identity.
+  // Takes ownership of K (destroyed also when it is refused), whose frames are the identity.
   FramedStiffness(Mat K, PetscInt own_begin, PetscInt own_end, std::vector<std::int32_t> face_slot);
   ~FramedStiffness();
   FramedStiffness(const FramedStiffness&) = delete;
@@ -60,6 +60,7 @@ class FramedStiffness {
     std::vector<PetscInt> saved_at;
     std::vector<PetscScalar> saved;
   };
+  void map_structure();  // the parts' CSR arrays and the identity frames; checks the contract
   PetscInt global_column(const Part& p, PetscInt j) const;
   template <class F>
   void edit_values(F&& f);  // f(part index, values array) for the parts, then state bumps

@@ -4,8 +4,16 @@
 #include <petscsys.h>
 
 #include <stdexcept>
+#include <string>
 
 namespace wr {
+
+namespace petsc {
+// PETSc calls return error codes; this turns them into exceptions naming the call.
+inline void check(PetscErrorCode ierr, const char* what) {
+  if (ierr) throw std::runtime_error(std::string("PETSc failed in ") + what + " (code " + std::to_string(ierr) + ")");
+}
+}  // namespace petsc
 
 class PetscSession {
  public:

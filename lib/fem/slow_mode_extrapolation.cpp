@@ -5,12 +5,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/fem/petsc_session.hpp"
+
 namespace wr {
 namespace {
 
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw std::runtime_error(std::string("PETSc error in ") + what);
-}
+using petsc::check;
 
 }  // namespace
 
