@@ -1,6 +1,7 @@
 // `wetroad bench ...`: benchmarks and long validations (bench/bench_harness.hpp).
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,9 +9,14 @@
 
 #include "app/commands.hpp"
 #include "bench/bench_harness.hpp"
+#include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
+#include "lib/core/provenance.hpp"
+#include "lib/core/richardson.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "roads/height_stats.hpp"
+#include "roads/surface_import.hpp"
 
 namespace wr::app {
 namespace {
@@ -43,6 +49,11 @@ struct BenchCli {
   double accuracy_h0 = 3e-5;
   std::vector<int> fem_refines = {1, 2};
   std::vector<int> spectral_refines = {1, 2, 4, 8};
+  // mesh-convergence: the shear test of the demo's coverage sweep by default
+  std::string mc_surface;
+  double mc_uz = 1.5e-3, mc_ux = 3e-3, mc_tol = 1e-3, mc_nu = 0.45;
+  int mc_steps = 2, mc_shear_steps = 3;
+  std::vector<int> mc_refines = {1, 2, 4, 8};
 };
 
 int run_speed(const BenchCli& c) {
@@ -141,16 +152,16 @@ int run_hertz(const BenchCli& c) {
   }
   // Self-convergence of Fz at the fixed indentation (meshes halving h): order and Richardson limit.
   for (std::size_t k = 2; k < rows.size(); ++k) {
-    const double f0 = rows[k - 2]["fz"].get<double>(), f1 = rows[k - 1]["fz"].get<double>(), f2 = rows[k]["fz"].get<double>();
-    const double ratio = (f0 - f1) / (f1 - f2);
-    if (!(ratio > 1)) {
-      std::printf("  Fz over n = %d..%d: not in the asymptotic range (difference ratio %.3g)\n", rows[k - 2]["n"].get<int>(),
-                  rows[k]["n"].get<int>(), ratio);
+    const double f2 = rows[k]["fz"].get<double>();
+    const auto e = richardson_three(rows[k - 2]["fz"].get<double>(), rows[k - 1]["fz"].get<double>(), f2);
+    if (!e) {
+      std::printf("  Fz over n = %d..%d: not in the asymptotic range\n", rows[k - 2]["n"].get<int>(),
+                  rows[k]["n"].get<int>());
       continue;
     }
-    const double p = std::log2(ratio), limit = f2 - (f1 - f2) / (ratio - 1);
-    std::printf("  Fz over n = %d..%d: observed order %.2f, extrapolated %.5e N (finest off by %.2f%%)\n",
-                rows[k - 2]["n"].get<int>(), rows[k]["n"].get<int>(), p, limit, 100 * (f2 / limit - 1));
+    std::printf("  Fz over n = %d..%d: observed order %.2f, extrapolated %.5e N +- %.1e (finest off by %.2f%%)\n",
+                rows[k - 2]["n"].get<int>(), rows[k]["n"].get<int>(), e->order, e->limit, e->error,
+                100 * (f2 / e->limit - 1));
   }
   if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
   return 0;
@@ -236,14 +247,13 @@ int run_kappa(const BenchCli& c) {
   for (std::size_t k = 2; k < rows.size(); ++k) {
     std::printf("  order over N = %zu..%zu:", rows[k - 2]["n"].get<std::size_t>(), rows[k]["n"].get<std::size_t>());
     for (std::size_t i = 0; i < rows[k]["curve"].size(); ++i) {
-      const double a0 = rows[k - 2]["curve"][i]["area_fraction"].get<double>(),
-                   a1 = rows[k - 1]["curve"][i]["area_fraction"].get<double>(),
-                   a2 = rows[k]["curve"][i]["area_fraction"].get<double>();
-      const double ratio = (a0 - a1) / (a1 - a2);
-      if (ratio > 1)
-        std::printf("  %.2f (limit %.5f)", std::log2(ratio), a2 - (a1 - a2) / (ratio - 1));
+      const auto e = richardson_three(rows[k - 2]["curve"][i]["area_fraction"].get<double>(),
+                                      rows[k - 1]["curve"][i]["area_fraction"].get<double>(),
+                                      rows[k]["curve"][i]["area_fraction"].get<double>());
+      if (e)
+        std::printf("  %.2f (limit %.5f)", e->order, e->limit);
       else
-        std::printf("  n/a (ratio %.2g)", ratio);
+        std::printf("  n/a");
     }
     std::printf("\n");
   }
@@ -257,18 +267,99 @@ int run_spectral_vs_fem(const BenchCli& c) {
   const int rank = session.rank;
   const auto rows = bench::spectral_vs_fem(c.compare_h0, c.compare_refine, rank);
   if (rank != 0) return 0;
-  std::printf("spectral layer against the FEM block at equal mean pressure, refine %d (100 x 100, 1 cm, H 0.7)\n",
+  std::printf("spectral layer against the FEM block, refine %d (100 x 100, 1 cm, H 0.7): A/A0 after the press at\n"
+              "equal mean pressure; mu after the shear (top moved by uz / 2) at equal displacements\n",
               c.compare_refine);
-  std::printf("  %9s %9s %9s %12s %11s %11s %9s %9s %9s\n", "h0 [m]", "rms slope", "FEM nodes", "Fz [N]", "A/A0 FEM",
-              "A/A0 spec", "diff", "FEM s", "spec s");
+  std::printf("  %9s %9s %9s %10s %12s %9s %9s %7s %9s %9s %9s %8s %8s\n", "h0 [m]", "rms slope", "FEM nodes", "uz [m]",
+              "Fz [N]", "A/A0 FEM", "A/A0 spec", "diff", "mu FEM", "mu spec", "dmu/slope", "FEM s", "spec s");
   for (const auto& r : rows)
-    std::printf("  %9.3g %9.3f %9zu %12.4e %11.4f %11.4f %8.1f%% %9.1f %9.2f%s\n", r["h0"].get<double>(),
-                r["rms_slope"].get<double>(), r["fem_nodes"].get<std::size_t>(), r["fem_fz"].get<double>(),
-                r["fem_area_fraction"].get<double>(), r["spectral_area_fraction"].get<double>(),
-                100 * r["area_difference"].get<double>(), r["fem_wall_s"].get<double>(), r["spectral_wall_s"].get<double>(),
-                r["fem_converged"].get<bool>() && r["spectral_converged"].get<bool>() ? "" : "  NOT CONVERGED");
+    std::printf("  %9.3g %9.3f %9zu %10.3g %12.4e %9.4f %9.4f %6.1f%% %9.5f %9.5f %8.2f%% %8.1f %8.2f%s\n",
+                r["h0"].get<double>(), r["rms_slope"].get<double>(), r["fem_nodes"].get<std::size_t>(),
+                r["uz"].get<double>(), r["fem_fz"].get<double>(), r["fem_area_fraction"].get<double>(),
+                r["spectral_area_fraction"].get<double>(), 100 * r["area_difference"].get<double>(),
+                r["fem_mu"].get<double>(), r["spectral_mu"].get<double>(),
+                100 * r["mu_difference_per_slope"].get<double>(), r["fem_wall_s"].get<double>(),
+                r["spectral_wall_s"].get<double>() + r["spectral_shear_wall_s"].get<double>(),
+                r["fem_converged"].get<bool>() && r["spectral_converged"].get<bool>() &&
+                        r["spectral_shear_converged"].get<bool>()
+                    ? ""
+                    : "  NOT CONVERGED");
   if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
   if (!c.plot.empty()) bench::plot_spectral_vs_fem(rows, c.plot);
+  return 0;
+}
+
+int session_size() {
+  int n = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &n);
+  return n;
+}
+
+int run_mesh_convergence(const BenchCli& c) {
+  const FemBenchSession session;
+  const int rank = session.rank;
+  const LoadedSurface s = load_surface(c.mc_surface);
+  if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
+  if (!std::is_sorted(c.mc_refines.begin(), c.mc_refines.end()) || c.mc_refines.front() < 1)
+    throw InputError("--refines", "give ascending refinements >= 1, e.g. 1 2 4 8");
+  ContactTestOptions o;
+  o.shear = true;
+  o.uz = c.mc_uz;
+  o.ux = c.mc_ux;
+  o.normal_steps = c.mc_steps;
+  o.shear_steps = c.mc_shear_steps;
+  o.tolerance = c.mc_tol;
+  o.poisson = c.mc_nu;
+  o.rms_slope = rms_slope_finite_difference(s.map);
+  o.max_penetration = 0.1 * height_stats(s.map).sq;  // as `wetroad contact`
+  if (rank == 0)
+    std::fprintf(stderr, "mesh convergence of the FEM shear test on %s (%zu x %zu, spacing %.3g m): uz %.3g m, ux %.3g m\n",
+                 s.source.c_str(), s.map.nx, s.map.ny, s.map.dx, o.uz, o.ux);
+  const auto r = bench::fem_mesh_convergence(s.map, o, c.mc_refines, rank);
+  if (rank != 0) return 0;
+  std::printf("FEM shear test over face refinements: %s, uz %.3g m in %d steps, ux %.3g m in %d, tol %.3g, nu %.3g\n",
+              s.source.c_str(), o.uz, o.normal_steps, o.ux, o.shear_steps, o.tolerance, o.poisson);
+  std::printf("  %6s %10s %9s %9s %10s %10s %9s %9s %9s\n", "refine", "spacing", "nodes", "A/A0 A", "peak mu", "at ux",
+              "drift", "A/A0 B", "wall s");
+  for (const auto& m : r["meshes"]) {
+    if (m.contains("skipped")) {
+      std::printf("  %6d %10.3g  skipped: %s\n", m["refine"].get<int>(), m["face_spacing"].get<double>(),
+                  m["skipped"].get<std::string>().c_str());
+      continue;
+    }
+    const auto num = [&](const char* k) { return m.contains(k) ? m[k].get<double>() : std::nan(""); };
+    std::printf("  %6d %10.3g %9zu %9.4f %10.5f %10.3g %9.3g %9.4f %9.1f%s\n", m["refine"].get<int>(),
+                m["face_spacing"].get<double>(), m["nodes"].get<std::size_t>(), num("pressed_area_fraction"), num("mu"),
+                num("mu_ux"), num("mu_drift"), num("sheared_area_fraction"), m["wall_s"].get<double>(),
+                m["converged"].get<bool>() ? "" : "  FAILED");
+  }
+  for (const auto& e : r["extrapolations"]) {
+    const auto& k = e["refines"];
+    std::printf("  Richardson over refine %d, %d, %d:", k[0].get<int>(), k[1].get<int>(), k[2].get<int>());
+    for (const char* q : {"mu", "pressed_area_fraction", "sheared_area_fraction"}) {
+      if (!e.contains(q)) continue;
+      if (e[q].contains("limit"))
+        std::printf("  %s %.5g +- %.2g (order %.2f)", q, e[q]["limit"].get<double>(), e[q]["error"].get<double>(),
+                    e[q]["order"].get<double>());
+      else
+        std::printf("  %s not in the asymptotic range", q);
+    }
+    std::printf("\n");
+  }
+  if (r["extrapolations"].empty()) std::printf("  no three finished meshes with one refinement ratio: no extrapolation\n");
+  if (!c.json.empty()) {
+    Provenance prov;
+    prov.command = "bench mesh-convergence";
+    prov.inputs = {{"surface", c.mc_surface}};
+    prov.parameters = {{"uz", o.uz}, {"ux", o.ux}, {"steps", o.normal_steps}, {"shear_steps", o.shear_steps},
+                       {"tolerance", o.tolerance}, {"E", o.young}, {"nu", o.poisson}, {"refines", c.mc_refines},
+                       {"max_penetration", o.max_penetration}, {"ranks", session_size()}};
+    prov.model = "fem: graded trilinear cube, frictionless contact, Signorini iteration (thesis sec. 4.2)";
+    nlohmann::json out = r;
+    out["provenance"] = prov.to_json();
+    write_text_atomically(c.json, out.dump(2) + "\n");
+  }
+  if (!c.plot.empty()) bench::plot_mesh_convergence(r, c.plot);
   return 0;
 }
 
@@ -339,7 +430,7 @@ Command add_bench(CLI::App& root) {
   ka->add_option("--threads", c->threads, "FFT threads (default: all cores)");
   ka->add_option("--json", c->json, "write the results as JSON");
   ka->add_option("--plot", c->plot, "draw A/A0 against sigma* per grid with Persson's and BGT's lines (SVG)");
-  CLI::App* vs = b->add_subcommand("spectral-vs-fem", "A/A0 of the spectral layer against the FEM block over slopes (MPI ok).");
+  CLI::App* vs = b->add_subcommand("spectral-vs-fem", "A/A0 and mu of the spectral layer against the FEM block over slopes (MPI ok).");
   vs->add_option("--h0", c->compare_h0, "rms heights of the scenes, m")->capture_default_str();
   vs->add_option("--refine", c->compare_refine, "face refinement of both models")->capture_default_str();
   vs->add_option("--json", c->json, "write the results as JSON");
@@ -350,13 +441,32 @@ Command add_bench(CLI::App& root) {
   ac->add_option("--spectral-refines", c->spectral_refines, "spectral grid refinements")->capture_default_str();
   ac->add_option("--json", c->json, "write the results as JSON");
   ac->add_option("--plot", c->plot, "draw wall time against error (SVG)");
+  CLI::App* mc = b->add_subcommand(
+      "mesh-convergence",
+      "Peak mu and A/A0 of one FEM shear test over face refinements, with Richardson's limit (MPI ok; long).");
+  mc->footer(
+      "The shear test (Problem A, then B) on --surface at each --refines value (face spacing = surface spacing /\n"
+      "refine). A mesh estimated above 80 % of physical memory is skipped. Over each three successive finished\n"
+      "meshes with one refinement ratio: the observed order, the extrapolated value and its GCI error band.\n"
+      "Example: mpirun -np 2 wetroad bench mesh-convergence --surface d32.h5 --refines 1 2 4 8 --json mc.json");
+  mc->add_option("--surface", c->mc_surface, "surface file (periodic HDF5 height map)")->required();
+  mc->add_option("--uz", c->mc_uz, "normal displacement of the top, m")->capture_default_str();
+  mc->add_option("--ux", c->mc_ux, "tangential displacement of the top, m")->capture_default_str();
+  mc->add_option("--steps", c->mc_steps, "normal steps")->capture_default_str();
+  mc->add_option("--shear-steps", c->mc_shear_steps, "shear steps")->capture_default_str();
+  mc->add_option("--tol", c->mc_tol, "Signorini tolerance (relative change)")->capture_default_str();
+  mc->add_option("--nu", c->mc_nu, "Poisson's ratio")->capture_default_str();
+  mc->add_option("--refines", c->mc_refines, "face refinements, ascending")->capture_default_str();
+  mc->add_option("--json", c->json, "write the results as JSON");
+  mc->add_option("--plot", c->plot, "draw peak mu against face spacing with the limit (SVG)");
   CLI::App* he = b->add_subcommand("hertz", "Hertz validation of the FEM contact solver over three meshes (MPI ok).");
   he->add_option("--meshes", c->hertz_meshes, "elements per face side")->capture_default_str();
   he->add_option("--radius", c->hertz_radius, "paraboloid radius of curvature, m")->capture_default_str();
   he->add_option("--uz", c->hertz_uz, "top displacement, m")->capture_default_str();
   he->add_option("--layers", c->hertz_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
   he->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su, wa, co, he, ss, sh, ka, vs, ac] {
+  return {b, [c, sp, su, wa, co, he, ss, sh, ka, vs, ac, mc] {
+            if (mc->parsed()) return run_mesh_convergence(*c);
             if (ac->parsed()) return run_accuracy(*c);
             if (vs->parsed()) return run_spectral_vs_fem(*c);
             if (he->parsed()) return run_hertz(*c);

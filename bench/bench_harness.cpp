@@ -12,7 +12,10 @@
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/analytic/hertz.hpp"
 #include "lib/analytic/nayak_summits.hpp"
+#include "lib/core/memory_guard.hpp"
 #include "lib/core/provenance.hpp"
+#include "lib/core/richardson.hpp"
+#include "lib/contact/contact_step.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/fem/contact_test.hpp"
@@ -585,6 +588,38 @@ ContactTestOptions comparison_press(double h0, int refine, double slope) {
   return fo;
 }
 
+// Its shear test: the press above, then the top moved by half the press in two steps (the face
+// slides several lattice cells on the gentle scenes, about one on the steepest).
+ContactTestOptions comparison_shear(double h0, int refine, double slope) {
+  ContactTestOptions fo = comparison_press(h0, refine, slope);
+  fo.shear = true;
+  fo.ux = fo.uz / 2;
+  fo.shear_steps = 2;
+  return fo;
+}
+
+// The spectral layer's run of the same shear test (displacement control: the layer's far face
+// moved like the block's top), on the FEM's face lattice.
+SpectralTestResult spectral_shear_like(const HeightMap& m, const ContactTestOptions& fo) {
+  SpectralTestOptions so;
+  so.uz = fo.uz;
+  so.steps = fo.normal_steps;
+  so.shear = true;
+  so.ux = fo.ux;
+  so.shear_steps = fo.shear_steps;
+  so.geometry_tolerance = fo.tolerance;
+  so.body = ElasticBody{fo.young, fo.poisson, m.lx()};
+  so.rms_slope = fo.rms_slope;
+  so.solver.threads = 1;
+  return run_spectral_contact_test(resample_triangulated(m, fo.refine), so);
+}
+
+// mu of a shear test's last step; NaN when it did not get there.
+double final_mu(const std::vector<ContactStep>& steps, const ContactTestOptions& fo) {
+  const std::size_t n = std::size_t(fo.normal_steps + fo.shear_steps);
+  return steps.size() == n ? steps.back().mu : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank) {
@@ -592,14 +627,18 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
   for (double h0 : h0s) {
     const HeightMap m = comparison_scene(h0);
     const double slope = rms_slope_finite_difference(m, 1);
-    const ContactTestOptions fo = comparison_press(h0, refine, slope);
+    // One FEM run gives both: A/A0 at the end of its press, mu at the end of its shear.
+    const ContactTestOptions fo = comparison_shear(h0, refine, slope);
     double t0 = now();
     const ContactTestResult fr = run_contact_test(m, fo);
     const double fem_wall = now() - t0;
-    const ContactStep& fs = fr.steps.back();
+    if (fr.steps.empty()) throw std::runtime_error("spectral-vs-fem: no FEM step finished at h0 " + std::to_string(h0) + " m");
+    // The press's last step (or the last that finished; fem_converged says which).
+    const ContactStep& fs = fr.steps[std::min(fr.steps.size(), std::size_t(fo.normal_steps)) - 1];
+    const double fem_mu = final_mu(fr.steps, fo);
     nlohmann::json row = {{"h0", h0}, {"rms_slope", slope}, {"refine", refine}, {"fem_nodes", fr.nodes},
                           {"fem_fz", fs.fz}, {"fem_area_fraction", fs.area_fraction}, {"fem_converged", !fr.failed},
-                          {"fem_wall_s", fem_wall}};
+                          {"fem_wall_s", fem_wall}, {"uz", fo.uz}, {"ux", fo.ux}, {"fem_mu", fem_mu}};
     if (rank == 0) {
       // The spectral layer (thickness = the period) at the FEM's mean pressure, on the same face lattice.
       SpectralTestOptions so;
@@ -614,6 +653,18 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
       row["spectral_converged"] = !r.failed;
       row["spectral_wall_s"] = now() - t0;
       row["area_difference"] = r.steps.back().area_fraction / fs.area_fraction - 1;
+      // mu compared at equal displacements: the layer is stiffer than the cube at equal uz,
+      // but a frictionless mu does not scale with the load, and equal pressure cannot be set
+      // under displacement control.
+      t0 = now();
+      const SpectralTestResult rs = spectral_shear_like(m, fo);
+      const double spectral_mu = final_mu(rs.steps, fo);
+      row["spectral_shear_converged"] = !rs.failed;
+      row["spectral_shear_wall_s"] = now() - t0;
+      row["spectral_mu"] = spectral_mu;
+      // mu of a frictionless contact is a mean of local slopes weighted by pressure, so its
+      // scale is the rms slope: the difference is reported relative to it.
+      row["mu_difference_per_slope"] = (spectral_mu - fem_mu) / slope;
       std::fprintf(stderr, "  h0 %.3g m (rms slope %.3f) done: FEM %.1f s\n", h0, slope, fem_wall);
     }
     rows.push_back(row);
@@ -659,15 +710,20 @@ void plot_kappa(const nlohmann::json& rows, const std::string& path) {
 
 void plot_spectral_vs_fem(const nlohmann::json& rows, const std::string& path) {
   PlotSpec p;
-  p.title = "Spectral layer against the FEM block at equal mean pressure";
+  p.title = "Spectral layer against the FEM block: A/A0 at equal mean pressure, mu at equal displacements";
   p.xlabel = "rms slope";
-  p.ylabel = "A/A0 (spectral) / A/A0 (FEM) - 1, %";
-  PlotSeries s{"refine " + std::to_string(rows.empty() ? 0 : rows[0]["refine"].get<int>()), {}, {}, "linespoints", {}};
+  p.ylabel = "difference, %";
+  const std::string refine = "refine " + std::to_string(rows.empty() ? 0 : rows[0]["refine"].get<int>());
+  PlotSeries area{"A/A0: spectral / FEM - 1, " + refine, {}, {}, "linespoints", {}};
+  PlotSeries mu{"mu: (spectral - FEM) / rms slope, " + refine, {}, {}, "linespoints", {}};
   for (const auto& r : rows) {
-    s.x.push_back(r["rms_slope"].get<double>());
-    s.y.push_back(100 * r["area_difference"].get<double>());
+    area.x.push_back(r["rms_slope"].get<double>());
+    area.y.push_back(100 * r["area_difference"].get<double>());
+    mu.x.push_back(r["rms_slope"].get<double>());
+    mu.y.push_back(100 * r["mu_difference_per_slope"].get<double>());
   }
-  p.series.push_back(s);
+  p.series.push_back(area);
+  p.series.push_back(mu);
   write_svg_plot(path, p);
 }
 
@@ -737,6 +793,99 @@ void plot_accuracy(const nlohmann::json& result, const std::string& path) {
         s.y.push_back(q["error"].get<double>());
       }
     if (!s.x.empty()) p.series.push_back(s);
+  }
+  write_svg_plot(path, p);
+}
+
+}  // namespace wr::bench
+
+namespace wr::bench {
+namespace {
+
+// Resident bytes per FEM node measured at the thesis's scale (300 x 300, refine 2: 4.7 GB per
+// rank for 1.05M nodes on 2 ranks, about 9 KB per node in all), and nodes per face node of the
+// graded cube (3.0 there); together a pre-flight estimate that decides whether a mesh is tried.
+constexpr double kBytesPerNode = 9e3, kNodesPerFaceNode = 3.0;
+
+double estimated_fem_bytes(const HeightMap& m, int refine) {
+  const double face = double(m.nx * std::size_t(refine) + 1) * double(m.ny * std::size_t(refine) + 1);
+  return kBytesPerNode * kNodesPerFaceNode * face;
+}
+
+}  // namespace
+
+nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestOptions& base,
+                                    const std::vector<int>& refines, int rank) {
+  nlohmann::json rows = nlohmann::json::array();
+  const double memory = double(physical_memory_bytes());
+  for (int r : refines) {
+    ContactTestOptions o = base;
+    o.refine = r;
+    const double need = estimated_fem_bytes(surface, r);
+    nlohmann::json row = {{"refine", r}, {"face_spacing", surface.dx / r}, {"estimated_bytes", need}};
+    if (need > 0.8 * memory) {
+      row["skipped"] = "estimated " + human_bytes(need) + " of " + human_bytes(memory) + " physical memory";
+      if (rank == 0) std::fprintf(stderr, "  refine %d skipped: %s\n", r, row["skipped"].get<std::string>().c_str());
+      rows.push_back(row);
+      continue;
+    }
+    const double t0 = now();
+    const ContactTestResult fr = run_contact_test(surface, o);
+    row["wall_s"] = now() - t0;
+    row["nodes"] = fr.nodes;
+    row["dofs"] = fr.dofs;
+    row["converged"] = !fr.failed;
+    row["peak_rss_bytes"] = double(peak_rss_bytes());  // this process (rank 0 reports its own)
+    if (fr.steps.size() >= std::size_t(o.normal_steps))
+      row["pressed_area_fraction"] = fr.steps[std::size_t(o.normal_steps) - 1].area_fraction;
+    if (const ContactStep* p = peak_friction(fr.steps)) {
+      row["mu"] = p->mu;
+      row["mu_ux"] = p->ux;
+      row["mu_drift"] = p->mu_drift;
+      row["sheared_area_fraction"] = p->area_fraction;
+    }
+    if (fr.failed && !fr.steps.empty()) row["message"] = fr.steps.back().message;
+    if (rank == 0)
+      std::fprintf(stderr, "  refine %d: %zu nodes, %.1f s%s\n", r, fr.nodes, now() - t0, fr.failed ? ", FAILED" : "");
+    rows.push_back(row);
+  }
+  // Richardson over each run of three successive finished meshes with one refinement ratio.
+  nlohmann::json extrapolations = nlohmann::json::array();
+  for (std::size_t k = 2; k < rows.size(); ++k) {
+    const nlohmann::json &a = rows[k - 2], &b = rows[k - 1], &c = rows[k];
+    const double ratio = double(b["refine"].get<int>()) / a["refine"].get<int>();
+    if (std::abs(double(c["refine"].get<int>()) / b["refine"].get<int>() - ratio) > 1e-12 || ratio <= 1) continue;
+    nlohmann::json e = {{"refines", {a["refine"], b["refine"], c["refine"]}}, {"ratio", ratio}};
+    for (const char* q : {"mu", "pressed_area_fraction", "sheared_area_fraction"}) {
+      if (!a.contains(q) || !b.contains(q) || !c.contains(q)) continue;
+      const auto r = richardson_three(a[q].get<double>(), b[q].get<double>(), c[q].get<double>(), ratio);
+      e[q] = r ? nlohmann::json{{"order", r->order}, {"limit", r->limit}, {"error", r->error}}
+               : nlohmann::json{{"asymptotic", false}};
+    }
+    extrapolations.push_back(e);
+  }
+  return {{"meshes", rows}, {"extrapolations", extrapolations}};
+}
+
+void plot_mesh_convergence(const nlohmann::json& result, const std::string& path) {
+  PlotSpec p;
+  p.title = "FEM shear test: peak mu against face spacing";
+  p.xlabel = "face spacing / obstacle spacing";
+  p.ylabel = "mu";
+  p.logx = true;
+  PlotSeries s{"peak mu (converged meshes)", {}, {}, "linespoints", {}};
+  for (const auto& r : result["meshes"])
+    if (r.contains("mu") && r.value("converged", false)) {
+      s.x.push_back(1.0 / r["refine"].get<int>());
+      s.y.push_back(r["mu"].get<double>());
+    }
+  p.series.push_back(s);
+  if (!result["extrapolations"].empty() && result["extrapolations"].back().contains("mu") &&
+      result["extrapolations"].back()["mu"].contains("limit") && !s.x.empty()) {
+    const auto& e = result["extrapolations"].back()["mu"];
+    const double lim = e["limit"].get<double>(), err = e["error"].get<double>();
+    PlotSeries l{"Richardson limit", {s.x.back() / 2}, {lim}, "points", {err}};
+    p.series.push_back(l);
   }
   write_svg_plot(path, p);
 }

@@ -5,6 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lib/core/height_map.hpp"
+#include "lib/fem/contact_test.hpp"
+
 namespace wr::bench {
 
 // synth + analyze of an N x N surface, in-process, in a forked child per size so that the peak
@@ -57,8 +60,11 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
 
 // Spectral against FEM on small and growing slopes (issue 5, bar 3): for each h0, a 100 x 100
 // self-affine scene (H 0.7, q0 = 2 qL, period 1 cm) pressed by the FEM block (uz proportional
-// to h0, about a third of contact) at face refinement `refine`; then the spectral layer
-// (thickness = the period) at the FEM's mean pressure on the same face lattice. A/A0 of both.
+// to h0, about a third of contact) at face refinement `refine` and then sheared (top moved by
+// uz / 2 in two steps); the spectral layer (thickness = the period) pressed to the FEM's mean
+// pressure on the same face lattice, and sheared at the FEM's displacements. A/A0 after the
+// press and mu after the shear of both; the mu difference also relative to the rms slope (the
+// scale of a frictionless mu; both are ~0 on a periodic obstacle, see README "contact models").
 // PETSc must be initialised; the spectral runs and progress lines on `rank` 0.
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank);
 
@@ -69,6 +75,18 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
 nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const std::vector<int>& spectral_refines,
                         int rank);
 void plot_accuracy(const nlohmann::json& result, const std::string& path);
+
+// Mesh convergence of the FEM shear test (issue 4, bar 3): `base` (a shear test) run on
+// `surface` at each face refinement in `refines` (ascending; spacing = obstacle spacing /
+// refine). A mesh whose estimated memory (about 27 KB per face node, measured at the thesis's
+// scale) exceeds 80 % of physical memory is skipped and says so. Per mesh: nodes, wall time,
+// converged, A/A0 after the press, the peak mu (peak_friction) with its ux, drift and A/A0.
+// `extrapolations`: over each three successive meshes with one refinement ratio, Richardson's
+// limit, observed order and GCI error (lib/core/richardson.hpp) of mu and both A/A0, or
+// "asymptotic": false. Collective over the FEM's ranks; progress lines on `rank` 0.
+nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestOptions& base,
+                                    const std::vector<int>& refines, int rank);
+void plot_mesh_convergence(const nlohmann::json& result, const std::string& path);
 
 // Charts of the results above (SVG through gnuplot, reports/plot.hpp).
 void plot_kappa(const nlohmann::json& rows, const std::string& path);
