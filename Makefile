@@ -38,6 +38,10 @@ validate: build
 	  --plot $(BUILD_DIR)/spectral-vs-fem.svg
 	OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 $(BUILD_DIR)/bin/wetroad bench accuracy \
 	  --fem-refines 1 2 3 --spectral-refines 1 2 3 4 8 --plot $(BUILD_DIR)/accuracy.svg
+	$(BUILD_DIR)/bin/wetroad synth --scene default --size 32 --dx 9.375e-4 -o $(BUILD_DIR)/d32.h5 -q
+	OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 $(BUILD_DIR)/bin/wetroad bench mesh-convergence \
+	  --surface $(BUILD_DIR)/d32.h5 --refines 1 2 4 8 --tol 1e-4 --json $(BUILD_DIR)/mesh-convergence.json \
+	  --plot $(BUILD_DIR)/mesh-convergence.svg
 
 clean:
 	rm -rf $(BUILD_DIR)

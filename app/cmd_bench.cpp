@@ -328,10 +328,11 @@ int run_mesh_convergence(const BenchCli& c) {
       continue;
     }
     const auto num = [&](const char* k) { return m.contains(k) ? m[k].get<double>() : std::nan(""); };
-    std::printf("  %6d %10.3g %9zu %9.4f %10.5f %10.3g %9.3g %9.4f %9.1f%s\n", m["refine"].get<int>(),
+    std::printf("  %6d %10.3g %9zu %9.4f %10.5f %10.3g %9.3g %9.4f %9.1f%s%s\n", m["refine"].get<int>(),
                 m["face_spacing"].get<double>(), m["nodes"].get<std::size_t>(), num("pressed_area_fraction"), num("mu"),
                 num("mu_ux"), num("mu_drift"), num("sheared_area_fraction"), m["wall_s"].get<double>(),
-                m["converged"].get<bool>() ? "" : "  FAILED");
+                m["converged"].get<bool>() ? "" : "  FAILED",
+                m.value("friction_converged", true) ? "" : "  mu still creeping (drift > 5 %)");
   }
   for (const auto& e : r["extrapolations"]) {
     const auto& k = e["refines"];
@@ -342,7 +343,10 @@ int run_mesh_convergence(const BenchCli& c) {
         std::printf("  %s %.5g +- %.2g (order %.2f)", q, e[q]["limit"].get<double>(), e[q]["error"].get<double>(),
                     e[q]["order"].get<double>());
       else
-        std::printf("  %s not in the asymptotic range", q);
+        std::printf("  %s not in the asymptotic range (finest two %.2g apart)", q,
+                    e[q]["finest_difference"].get<double>());
+      if (e[q].contains("friction_converged") && !e[q]["friction_converged"].get<bool>())
+        std::printf(" [uses a creeping mu]");
     }
     std::printf("\n");
   }
@@ -355,6 +359,9 @@ int run_mesh_convergence(const BenchCli& c) {
                        {"tolerance", o.tolerance}, {"E", o.young}, {"nu", o.poisson}, {"refines", c.mc_refines},
                        {"max_penetration", o.max_penetration}, {"ranks", session_size()}};
     prov.model = "fem: graded trilinear cube, frictionless contact, Signorini iteration (thesis sec. 4.2)";
+    double total = 0;
+    for (const auto& m : r["meshes"]) total += m.value("wall_s", 0.0);
+    prov.timings = {{"total", total}};
     nlohmann::json out = r;
     out["provenance"] = prov.to_json();
     write_text_atomically(c.json, out.dump(2) + "\n");

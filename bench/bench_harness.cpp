@@ -16,6 +16,7 @@
 #include "lib/core/provenance.hpp"
 #include "lib/core/richardson.hpp"
 #include "lib/contact/contact_step.hpp"
+#include "lib/contact/friction_convergence.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/fem/contact_test.hpp"
@@ -842,6 +843,9 @@ nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestO
       row["mu"] = p->mu;
       row["mu_ux"] = p->ux;
       row["mu_drift"] = p->mu_drift;
+      // The iteration met --tol while mu still crept (friction_convergence.hpp): such a mu is
+      // where the iteration stopped, so the extrapolation that uses it says so.
+      row["friction_converged"] = !(p->mu_drift > kFrictionDriftLimit);
       row["sheared_area_fraction"] = p->area_fraction;
     }
     if (fr.failed && !fr.steps.empty()) row["message"] = fr.steps.back().message;
@@ -861,7 +865,13 @@ nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestO
       const auto r = richardson_three(a[q].get<double>(), b[q].get<double>(), c[q].get<double>(), ratio);
       e[q] = r ? nlohmann::json{{"order", r->order}, {"limit", r->limit}, {"error", r->error}}
                : nlohmann::json{{"asymptotic", false}};
+      // Beside the verdict, how far the two finest meshes still are apart: a sign change of a
+      // difference far below the previous one is convergence within it, not divergence.
+      e[q]["finest_difference"] = std::abs(c[q].get<double>() - b[q].get<double>());
     }
+    if (e.contains("mu"))
+      e["mu"]["friction_converged"] = a.value("friction_converged", false) && b.value("friction_converged", false) &&
+                                      c.value("friction_converged", false);
     extrapolations.push_back(e);
   }
   return {{"meshes", rows}, {"extrapolations", extrapolations}};
@@ -880,12 +890,16 @@ void plot_mesh_convergence(const nlohmann::json& result, const std::string& path
       s.y.push_back(r["mu"].get<double>());
     }
   p.series.push_back(s);
-  if (!result["extrapolations"].empty() && result["extrapolations"].back().contains("mu") &&
-      result["extrapolations"].back()["mu"].contains("limit") && !s.x.empty()) {
-    const auto& e = result["extrapolations"].back()["mu"];
-    const double lim = e["limit"].get<double>(), err = e["error"].get<double>();
-    PlotSeries l{"Richardson limit", {s.x.back() / 2}, {lim}, "points", {err}};
-    p.series.push_back(l);
+  // The finest extrapolation that found a limit, drawn left of the finest mesh with its GCI band.
+  const auto& ex = result["extrapolations"];
+  for (auto e = ex.rbegin(); e != ex.rend() && !s.x.empty(); ++e) {
+    if (!e->contains("mu") || !(*e)["mu"].contains("limit")) continue;
+    const auto& k = (*e)["refines"];
+    const std::string label = "Richardson limit over refine " + std::to_string(k[0].get<int>()) + ", " +
+                              std::to_string(k[1].get<int>()) + ", " + std::to_string(k[2].get<int>()) + " (GCI band)";
+    p.series.push_back({label, {s.x.back() / 2}, {(*e)["mu"]["limit"].get<double>()}, "points",
+                        {(*e)["mu"]["error"].get<double>()}});
+    break;
   }
   write_svg_plot(path, p);
 }
