@@ -12,7 +12,7 @@
 #include "lib/fem/elastic_block.hpp"
 #include "lib/fem/framed_stiffness.hpp"
 #include "lib/fem/petsc_session.hpp"
-#include "lib/fem/adaptive_damping.hpp"
+#include "lib/contact/adaptive_damping.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/spectral/spectral_contact_test.hpp"

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "lib/fem/adaptive_damping.hpp"
+#include "lib/contact/adaptive_damping.hpp"
 #include "lib/fem/framed_stiffness.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"

@@ -1,4 +1,4 @@
-#include "lib/fem/adaptive_damping.hpp"
+#include "lib/contact/adaptive_damping.hpp"
 
 #include <algorithm>
 

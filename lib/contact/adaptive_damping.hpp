@@ -1,6 +1,7 @@
 #pragma once
 // The damping alpha_c of the Signorini (geometry) iteration, thesis sec. 4.2, Algorithm 1: the
-// correction c = u* - u is scaled by alpha_c before it is added (the thesis fixes 0.8).
+// correction c = u* - u is scaled by alpha_c before it is added (the thesis fixes 0.8). Used by
+// the FEM's Signorini iteration and by the spectral shear test's geometry iteration.
 //
 // Why adaptive: nodes on kinks of a rough obstacle can chatter between two contact states (the
 // linearised map is discontinuous there), and a fixed alpha_c then never converges.
@@ -33,6 +34,7 @@ class AdaptiveDamping {
 
   double alpha() const { return alpha_; }  // to apply to this iteration's correction
   bool capped() const { return cap_ < nominal_; }
+  bool exhausted() const { return cap_ <= kMinCap; }  // the ceiling cannot be cut further
   // The change the convergence test judges: times the ceiling once the ceiling was cut.
   double step_change(double change) const { return capped() ? cap_ * change : change; }
 
