@@ -15,7 +15,6 @@
 #include "lib/core/richardson.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
-#include "roads/height_stats.hpp"
 #include "roads/surface_import.hpp"
 
 namespace wr::app {
@@ -300,18 +299,17 @@ int run_mesh_convergence(const BenchCli& c) {
   const int rank = session.rank;
   const LoadedSurface s = load_surface(c.mc_surface);
   if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
-  if (!std::is_sorted(c.mc_refines.begin(), c.mc_refines.end()) || c.mc_refines.front() < 1)
+  if (c.mc_refines.empty() || !std::is_sorted(c.mc_refines.begin(), c.mc_refines.end()) || c.mc_refines.front() < 1)
     throw InputError("--refines", "give ascending refinements >= 1, e.g. 1 2 4 8");
-  ContactTestOptions o;
-  o.shear = true;
+  ContactScene o;  // the shear test; the bench sets the model (fem) and each refine
   o.uz = c.mc_uz;
   o.ux = c.mc_ux;
   o.normal_steps = c.mc_steps;
   o.shear_steps = c.mc_shear_steps;
   o.tolerance = c.mc_tol;
   o.poisson = c.mc_nu;
-  o.rms_slope = rms_slope_finite_difference(s.map);
-  o.max_penetration = 0.1 * height_stats(s.map).sq;  // as `wetroad contact`
+  o.refine = c.mc_refines.front();
+  check_contact_scene(o);
   if (rank == 0)
     std::fprintf(stderr, "mesh convergence of the FEM shear test on %s (%zu x %zu, spacing %.3g m): uz %.3g m, ux %.3g m\n",
                  s.source.c_str(), s.map.nx, s.map.ny, s.map.dx, o.uz, o.ux);
@@ -355,9 +353,9 @@ int run_mesh_convergence(const BenchCli& c) {
     Provenance prov;
     prov.command = "bench mesh-convergence";
     prov.inputs = {{"surface", c.mc_surface}};
-    prov.parameters = {{"uz", o.uz}, {"ux", o.ux}, {"steps", o.normal_steps}, {"shear_steps", o.shear_steps},
-                       {"tolerance", o.tolerance}, {"E", o.young}, {"nu", o.poisson}, {"refines", c.mc_refines},
-                       {"max_penetration", o.max_penetration}, {"ranks", session_size()}};
+    prov.parameters = contact_scene_json(o);
+    prov.parameters["refines"] = c.mc_refines;
+    prov.parameters["ranks"] = session_size();
     prov.model = "fem: graded trilinear cube, frictionless contact, Signorini iteration (thesis sec. 4.2)";
     double total = 0;
     for (const auto& m : r["meshes"]) total += m.value("wall_s", 0.0);

@@ -15,6 +15,7 @@
 #include "lib/core/memory_guard.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/core/richardson.hpp"
+#include "lib/contact/contact_scene.hpp"
 #include "lib/contact/contact_step.hpp"
 #include "lib/contact/friction_convergence.hpp"
 #include "lib/core/fft.hpp"
@@ -589,36 +590,26 @@ ContactTestOptions comparison_press(double h0, int refine, double slope) {
   return fo;
 }
 
-// Its shear test: the press above, then the top moved by half the press in two steps (the face
-// slides several lattice cells on the gentle scenes, about one on the steepest).
-ContactTestOptions comparison_shear(double h0, int refine, double slope) {
-  ContactTestOptions fo = comparison_press(h0, refine, slope);
-  fo.shear = true;
-  fo.ux = fo.uz / 2;
-  fo.shear_steps = 2;
-  return fo;
+// Its shear test as a scene both models run: the press above, then the top moved by half the
+// press in two steps (the face slides several lattice cells on the gentle scenes, about one on
+// the steepest).
+ContactScene comparison_shear(const ContactTestOptions& press) {
+  ContactScene sc;
+  sc.uz = press.uz;
+  sc.normal_steps = press.normal_steps;
+  sc.ux = press.uz / 2;
+  sc.shear_steps = 2;
+  sc.refine = press.refine;
+  sc.tolerance = press.tolerance;
+  sc.young = press.young;
+  sc.poisson = press.poisson;
+  return sc;
 }
 
-// The spectral layer's run of the same shear test (displacement control: the layer's far face
-// moved like the block's top), on the FEM's face lattice.
-SpectralTestResult spectral_shear_like(const HeightMap& m, const ContactTestOptions& fo) {
-  SpectralTestOptions so;
-  so.uz = fo.uz;
-  so.steps = fo.normal_steps;
-  so.shear = true;
-  so.ux = fo.ux;
-  so.shear_steps = fo.shear_steps;
-  so.geometry_tolerance = fo.tolerance;
-  so.body = ElasticBody{fo.young, fo.poisson, m.lx()};
-  so.rms_slope = fo.rms_slope;
-  so.solver.threads = 1;
-  return run_spectral_contact_test(resample_triangulated(m, fo.refine), so);
-}
-
-// mu of a shear test's last step; NaN when it did not get there.
-double final_mu(const std::vector<ContactStep>& steps, const ContactTestOptions& fo) {
-  const std::size_t n = std::size_t(fo.normal_steps + fo.shear_steps);
-  return steps.size() == n ? steps.back().mu : std::numeric_limits<double>::quiet_NaN();
+// mu of a shear run's last step; NaN when it did not get there.
+double final_mu(const SceneResult& r, const ContactScene& sc) {
+  const std::size_t n = std::size_t(sc.normal_steps + sc.shear_steps);
+  return r.steps.size() == n && !r.failed ? r.steps.back().mu : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -629,17 +620,19 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
     const HeightMap m = comparison_scene(h0);
     const double slope = rms_slope_finite_difference(m, 1);
     // One FEM run gives both: A/A0 at the end of its press, mu at the end of its shear.
-    const ContactTestOptions fo = comparison_shear(h0, refine, slope);
+    const ContactTestOptions fo = comparison_press(h0, refine, slope);
+    ContactScene shear = comparison_shear(fo);
+    shear.model = ContactModel::fem;
     double t0 = now();
-    const ContactTestResult fr = run_contact_test(m, fo);
+    const SceneResult fr = run_contact_scene(m, shear, MPI_COMM_NULL);
     const double fem_wall = now() - t0;
     if (fr.steps.empty()) throw std::runtime_error("spectral-vs-fem: no FEM step finished at h0 " + std::to_string(h0) + " m");
     // The press's last step (or the last that finished; fem_converged says which).
     const ContactStep& fs = fr.steps[std::min(fr.steps.size(), std::size_t(fo.normal_steps)) - 1];
-    const double fem_mu = final_mu(fr.steps, fo);
-    nlohmann::json row = {{"h0", h0}, {"rms_slope", slope}, {"refine", refine}, {"fem_nodes", fr.nodes},
+    const double fem_mu = final_mu(fr, shear);
+    nlohmann::json row = {{"h0", h0}, {"rms_slope", slope}, {"refine", refine}, {"fem_nodes", fr.unknowns},
                           {"fem_fz", fs.fz}, {"fem_area_fraction", fs.area_fraction}, {"fem_converged", !fr.failed},
-                          {"fem_wall_s", fem_wall}, {"uz", fo.uz}, {"ux", fo.ux}, {"fem_mu", fem_mu}};
+                          {"fem_wall_s", fem_wall}, {"uz", shear.uz}, {"ux", shear.ux}, {"fem_mu", fem_mu}};
     if (rank == 0) {
       // The spectral layer (thickness = the period) at the FEM's mean pressure, on the same face lattice.
       SpectralTestOptions so;
@@ -658,8 +651,9 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
       // but a frictionless mu does not scale with the load, and equal pressure cannot be set
       // under displacement control.
       t0 = now();
-      const SpectralTestResult rs = spectral_shear_like(m, fo);
-      const double spectral_mu = final_mu(rs.steps, fo);
+      shear.model = ContactModel::spectral;  // on the FEM's face lattice, a layer as thick as the cube
+      const SceneResult rs = run_contact_scene(m, shear, MPI_COMM_NULL);
+      const double spectral_mu = final_mu(rs, shear);
       row["spectral_shear_converged"] = !rs.failed;
       row["spectral_shear_wall_s"] = now() - t0;
       row["spectral_mu"] = spectral_mu;
@@ -815,13 +809,14 @@ double estimated_fem_bytes(const HeightMap& m, int refine) {
 
 }  // namespace
 
-nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestOptions& base,
-                                    const std::vector<int>& refines, int rank) {
+nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactScene& base, const std::vector<int>& refines,
+                                    int rank) {
   nlohmann::json rows = nlohmann::json::array();
   const double memory = double(physical_memory_bytes());
   for (int r : refines) {
-    ContactTestOptions o = base;
-    o.refine = r;
+    ContactScene sc = base;
+    sc.model = ContactModel::fem;
+    sc.refine = r;
     const double need = estimated_fem_bytes(surface, r);
     nlohmann::json row = {{"refine", r}, {"face_spacing", surface.dx / r}, {"estimated_bytes", need}};
     if (need > 0.8 * memory) {
@@ -831,14 +826,12 @@ nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestO
       continue;
     }
     const double t0 = now();
-    const ContactTestResult fr = run_contact_test(surface, o);
+    const SceneResult fr = run_contact_scene(surface, sc, MPI_COMM_NULL);
     row["wall_s"] = now() - t0;
-    row["nodes"] = fr.nodes;
-    row["dofs"] = fr.dofs;
+    row["nodes"] = fr.unknowns;
     row["converged"] = !fr.failed;
-    row["peak_rss_bytes"] = double(peak_rss_bytes());  // this process (rank 0 reports its own)
-    if (fr.steps.size() >= std::size_t(o.normal_steps))
-      row["pressed_area_fraction"] = fr.steps[std::size_t(o.normal_steps) - 1].area_fraction;
+    row["peak_rss_bytes"] = double(peak_rss_bytes());  // this process so far (rank 0 reports its own)
+    if (fr.area_normal > 0) row["pressed_area_fraction"] = fr.area_normal;
     if (const ContactStep* p = peak_friction(fr.steps)) {
       row["mu"] = p->mu;
       row["mu_ux"] = p->ux;
@@ -848,9 +841,9 @@ nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestO
       row["friction_converged"] = !(p->mu_drift > kFrictionDriftLimit);
       row["sheared_area_fraction"] = p->area_fraction;
     }
-    if (fr.failed && !fr.steps.empty()) row["message"] = fr.steps.back().message;
+    if (fr.failed) row["message"] = fr.message;
     if (rank == 0)
-      std::fprintf(stderr, "  refine %d: %zu nodes, %.1f s%s\n", r, fr.nodes, now() - t0, fr.failed ? ", FAILED" : "");
+      std::fprintf(stderr, "  refine %d: %zu nodes, %.1f s%s\n", r, fr.unknowns, now() - t0, fr.failed ? ", FAILED" : "");
     rows.push_back(row);
   }
   // Richardson over each run of three successive finished meshes with one refinement ratio.

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lib/core/height_map.hpp"
-#include "lib/fem/contact_test.hpp"
+#include "lib/contact/contact_scene.hpp"
 
 namespace wr::bench {
 
@@ -76,7 +76,8 @@ nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const st
                         int rank);
 void plot_accuracy(const nlohmann::json& result, const std::string& path);
 
-// Mesh convergence of the FEM shear test (issue 4, bar 3): `base` (a shear test) run on
+// Mesh convergence of the FEM shear test (issue 4, bar 3): `base` (a shear test; its model and
+// refine are set here) run by the FEM on
 // `surface` at each face refinement in `refines` (ascending; spacing = obstacle spacing /
 // refine). A mesh whose estimated memory (about 27 KB per face node, measured at the thesis's
 // scale) exceeds 80 % of physical memory is skipped and says so. Per mesh: nodes, wall time,
@@ -84,8 +85,8 @@ void plot_accuracy(const nlohmann::json& result, const std::string& path);
 // `extrapolations`: over each three successive meshes with one refinement ratio, Richardson's
 // limit, observed order and GCI error (lib/core/richardson.hpp) of mu and both A/A0, or
 // "asymptotic": false. Collective over the FEM's ranks; progress lines on `rank` 0.
-nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactTestOptions& base,
-                                    const std::vector<int>& refines, int rank);
+nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactScene& base, const std::vector<int>& refines,
+                                    int rank);
 void plot_mesh_convergence(const nlohmann::json& result, const std::string& path);
 
 // Charts of the results above (SVG through gnuplot, reports/plot.hpp).

@@ -14,8 +14,7 @@
 #include "lib/fem/petsc_session.hpp"
 #include "lib/contact/adaptive_damping.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
-#include "lib/contact/periodic_obstacle.hpp"
-#include "lib/spectral/spectral_contact_test.hpp"
+#include "lib/contact/contact_scene.hpp"
 
 namespace wr {
 namespace {
@@ -403,10 +402,11 @@ TEST(Fem, CoarseStartReachesTheSameStateInFewerFineIterations) {
 // press alone: this obstacle is not mirror-symmetric, and the cube's free edges sit on
 // different slopes). Equal displacements, not equal loads: the laterally confined layer is
 // stiffer than the free cube (uniaxial-strain modulus 3.8 E at nu 0.45; A/A0 0.66 against
-// 0.34), and a frictionless mu does not scale with the load. The bench `spectral-vs-fem` measures both on 100 x 100 self-affine scenes.
+// 0.34), and a frictionless mu does not scale with the load. The bench `spectral-vs-fem`
+// measures both on 100 x 100 self-affine scenes.
 TEST(Fem, FrictionlessShearOnAGentleObstacleAgreesWithTheSpectralLayer) {
   const std::size_t n = 24;
-  const double dx = 1e-4, L = double(n) * dx;
+  const double dx = 1e-4;
   HeightMap m(n, n, dx, dx);
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t i = 0; i < n; ++i) {
@@ -424,31 +424,21 @@ TEST(Fem, FrictionlessShearOnAGentleObstacleAgreesWithTheSpectralLayer) {
   ASSERT_GT(slope, 0.05);
   ASSERT_LT(slope, 0.2);
 
-  ContactTestOptions fo;
-  fo.shear = true;
-  fo.uz = 4e-5;
-  fo.normal_steps = 2;
-  fo.ux = dx;
-  fo.shear_steps = 2;
-  fo.refine = 2;
-  fo.tolerance = 1e-6;
-  fo.rms_slope = slope;
-  const ContactTestResult fem = run_contact_test(m, fo, nullptr);
-  ASSERT_FALSE(fem.failed) << fem.steps.back().message;
+  // One scene, run by both models (lib/contact/contact_scene.hpp).
+  ContactScene scene;
+  scene.uz = 4e-5;
+  scene.normal_steps = 2;
+  scene.ux = dx;
+  scene.shear_steps = 2;
+  scene.refine = 2;
+  scene.tolerance = 1e-6;
+  scene.model = ContactModel::fem;
+  const SceneResult fem = run_contact_scene(m, scene, MPI_COMM_NULL);
+  ASSERT_FALSE(fem.failed) << fem.message;
   ASSERT_EQ(fem.steps.size(), 4u);
-
-  SpectralTestOptions so;
-  so.uz = fo.uz;
-  so.steps = fo.normal_steps;
-  so.shear = true;
-  so.ux = fo.ux;
-  so.shear_steps = fo.shear_steps;
-  so.geometry_tolerance = 1e-8;
-  so.body = ElasticBody{fo.young, fo.poisson, L};
-  so.rms_slope = slope;
-  so.solver.threads = 1;
-  const SpectralTestResult spec = run_spectral_contact_test(resample_triangulated(m, fo.refine), so);
-  ASSERT_FALSE(spec.failed) << spec.steps.back().message;
+  scene.model = ContactModel::spectral;  // the layer as thick as the cube is high
+  const SceneResult spec = run_contact_scene(m, scene, MPI_COMM_NULL);
+  ASSERT_FALSE(spec.failed) << spec.message;
   ASSERT_EQ(spec.steps.size(), 4u);
 
   const ContactStep &pressed = fem.steps[1], &sheared = fem.steps[3];
