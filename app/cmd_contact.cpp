@@ -90,8 +90,9 @@ double parse_thickness(const std::string& text, double fallback) {
   return t;
 }
 
-// The area-load fits (eq. 5.4 quartic, eq. 3.179 YAM with the quartic's kappa) over the
-// converged normal steps, when there are at least four; null otherwise.
+// The area-load fits over the converged normal steps: the low-pressure kappa (sec. 5.2.3) from
+// any of them, the quartic (eq. 5.4) and YAM (eq. 3.179, with the quartic's kappa) from four or
+// more; null without a converged normal step.
 nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool talk) {
   std::vector<double> s, a;
   for (const auto& st : steps)
@@ -99,11 +100,19 @@ nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool ta
       s.push_back(st.sigma_star);
       a.push_back(st.area_fraction);
     }
-  if (s.size() < 4) return nullptr;
+  if (s.empty()) return nullptr;
+  // The low-pressure regression of sec. 5.2.3 needs no minimum: any step below 15 % counts.
+  const LowPressureKappa lp = fit_low_pressure_kappa(s, a);
+  nlohmann::json low = {{"kappa", lp.kappa}, {"points", lp.points}, {"max_area_fraction", lp.max_area}};
+  if (talk && lp.points > 0)
+    std::printf("  low-pressure kappa (sec. 5.2.3, A/A0 <= %.2f, %zu step%s): %.4f\n", lp.max_area, lp.points,
+                lp.points == 1 ? "" : "s", lp.kappa);
+  if (s.size() < 4) return nlohmann::json{{"low_pressure", low}};
   try {
     const QuarticAreaFit q = fit_quartic_area(s, a);
     nlohmann::json j = {{"quartic", {{"Pi", q.pi}, {"Omega", q.omega}, {"Lambda", q.lambda}, {"kappa", q.kappa},
-                                     {"r2", q.r2}, {"eps_1e4", 1e4 * (1 - q.r2)}}}};
+                                     {"r2", q.r2}, {"eps_1e4", 1e4 * (1 - q.r2)}}},
+                        {"low_pressure", low}};
     if (q.kappa > 0) {
       const YamFit y = fit_yam(s, a, q.kappa);
       j["yam"] = {{"kappa", y.kappa}, {"beta", y.beta}, {"mu", y.mu}, {"rms_error", y.rms_error}};
@@ -113,7 +122,7 @@ nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool ta
                   q.lambda, q.omega, q.pi, 1 - q.r2);
     return j;
   } catch (const std::invalid_argument&) {
-    return nullptr;
+    return nlohmann::json{{"low_pressure", low}};
   }
 }
 

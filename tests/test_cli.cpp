@@ -321,6 +321,12 @@ TEST_F(Cli, AnalyticModelReportsTheAreaLoadFits) {
   EXPECT_NEAR(q["kappa"].get<double>(), std::sqrt(8 / pi), 1e-4);
   EXPECT_NEAR(q["Omega"].get<double>(), -4 * std::sqrt(2.0) / (3 * std::sqrt(pi)), 1e-2);
   EXPECT_TRUE(js["area_load_fit"].contains("yam"));
+  // The low-pressure regression (sec. 5.2.3) over the steps below 15 % contact: erf is concave,
+  // so its chord slope lies just under sqrt(8/pi), by 2 s^2 / 3 < 1 % for s below 0.1.
+  const auto& low = js["area_load_fit"]["low_pressure"];
+  EXPECT_GE(low["points"].get<int>(), 2);
+  EXPECT_LT(low["kappa"].get<double>(), std::sqrt(8 / pi));
+  EXPECT_GT(low["kappa"].get<double>(), 0.99 * std::sqrt(8 / pi));
 }
 
 TEST_F(Cli, ContactAutoModelSaysWhichChecksDecided) {

@@ -188,5 +188,26 @@ TEST(AreaLoadFit, QuarticAndYamRecoverTheirParameters) {
   EXPECT_THROW(fit_quartic_area({0.1, 0.2}, {0.2, 0.4}), std::invalid_argument);
 }
 
+// The low-pressure kappa (sec. 5.2.3): on a curve that is linear below 15 % contact and bends
+// above, the regression through the origin returns the linear slope exactly and ignores the
+// bent part; least squares through the origin of a scattered line: sum(s a) / sum(s^2).
+TEST(AreaLoadFit, LowPressureKappaIsTheSlopeBelowFifteenPercent) {
+  std::vector<double> s, a;
+  for (int k = 1; k <= 12; ++k) {
+    const double x = 0.01 * k;
+    s.push_back(x);
+    a.push_back(x <= 0.065 ? 2.16 * x : 0.16 + 0.5 * (x - 0.065));  // flattens above 15 % contact
+  }
+  const LowPressureKappa k = fit_low_pressure_kappa(s, a);
+  EXPECT_EQ(k.points, 6u);
+  EXPECT_NEAR(k.kappa, 2.16, 1e-12);
+  const LowPressureKappa scattered = fit_low_pressure_kappa({0.01, 0.02, 0.03}, {0.021, 0.039, 0.066});
+  EXPECT_NEAR(scattered.kappa, (0.01 * 0.021 + 0.02 * 0.039 + 0.03 * 0.066) / (1e-4 + 4e-4 + 9e-4), 1e-12);
+  EXPECT_EQ(fit_low_pressure_kappa({0.5}, {0.8}).points, 0u);  // nothing at low pressure
+  EXPECT_EQ(fit_low_pressure_kappa({0.5}, {0.8}).kappa, 0.0);
+  EXPECT_THROW(fit_low_pressure_kappa({0.1}, {0.2}, 0.0), std::invalid_argument);
+  EXPECT_THROW(fit_low_pressure_kappa({-0.1}, {0.2}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace wr

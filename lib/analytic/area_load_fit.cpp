@@ -72,6 +72,23 @@ QuarticAreaFit fit_quartic_area(const std::vector<double>& s, const std::vector<
   return f;
 }
 
+LowPressureKappa fit_low_pressure_kappa(const std::vector<double>& sigma_star, const std::vector<double>& area,
+                                        double max_area) {
+  check_curve(sigma_star, area, 0);
+  if (!(max_area > 0 && max_area <= 1)) throw std::invalid_argument("the low-pressure limit of A/A0 must lie in (0, 1]");
+  LowPressureKappa k;
+  k.max_area = max_area;
+  double sa = 0, ss = 0;
+  for (std::size_t i = 0; i < area.size(); ++i)
+    if (area[i] <= max_area) {
+      sa += sigma_star[i] * area[i];
+      ss += sigma_star[i] * sigma_star[i];
+      ++k.points;
+    }
+  if (k.points > 0) k.kappa = sa / ss;
+  return k;
+}
+
 double yam_area_fraction(double s, double kappa, double beta, double mu) {
   const double e = mu - 1;
   return std::pow(beta + std::pow(kappa * s, e), 1 / e);

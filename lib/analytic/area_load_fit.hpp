@@ -11,6 +11,7 @@
 //   by non-linear least squares (a deterministic coarse-to-fine search over (beta, mu)).
 // Inputs: sigma* > 0 and A/A0 in [0, 1], equal lengths. Throws std::invalid_argument otherwise
 // or with too few points (4 for the quartic, 2 for YAM).
+#include <cstddef>
 #include <vector>
 
 namespace wr {
@@ -20,6 +21,18 @@ struct QuarticAreaFit {
   double r2 = 0;  // coefficient of determination of the fit
 };
 QuarticAreaFit fit_quartic_area(const std::vector<double>& sigma_star, const std::vector<double>& area);
+
+// The thesis's low-pressure kappa (sec. 5.2.3, Fig. 5.6-5.7): the linear law A/A0 = kappa s of
+// eq. 3.169 fitted by least squares through the origin to the points with A/A0 <= max_area
+// (the thesis: A below 15 % of A0), kappa = sum(s a) / sum(s^2). `points` says how many were
+// used; kappa is 0 with none. Validated inputs as above (no minimum count).
+struct LowPressureKappa {
+  double kappa = 0;
+  std::size_t points = 0;
+  double max_area = 0.15;
+};
+LowPressureKappa fit_low_pressure_kappa(const std::vector<double>& sigma_star, const std::vector<double>& area,
+                                        double max_area = 0.15);
 
 double yam_area_fraction(double sigma_star, double kappa, double beta, double mu);
 
