@@ -11,8 +11,9 @@
 // - When the change stalls all the same (stagnated(): the best change of the last kWindow
 //   iterations is not half the best of the kWindow before), the ceiling halves (down to
 //   kMinCap), at most once per 2 kWindow iterations. The iterates then average the chatter out
-//   (a Krasnoselskii-Mann step), and convergence is judged on the capped step, step_change():
-//   the change the iterate still makes. The caller's penetration check keeps that honest.
+//   (a Krasnoselskii-Mann step). The FEM judges convergence on the capped step, step_change():
+//   the change the iterate still makes, kept honest by its penetration check; the spectral
+//   shear judges the residual itself and gives up only once exhausted().
 #include <cstddef>
 #include <vector>
 

@@ -105,7 +105,8 @@ class GeometryFollowing {
       }
       if (stagnated(st.history, 20) && damping.exhausted()) {
         st.message = "geometry iteration stagnated: the change " + std::to_string(change) +
-                     " has not halved in 20 iterations (tolerance " + std::to_string(opt_.geometry_tolerance) + ")";
+                     " has not halved in 20 iterations, with the damping at its floor (tolerance " +
+                     std::to_string(opt_.geometry_tolerance) + ")";
         break;
       }
     }
