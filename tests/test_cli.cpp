@@ -307,6 +307,18 @@ TEST_F(Cli, ContactSpectralModelReportsEveryStep) {
   EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
 }
 
+// The mesh-convergence bench refuses bad input with one line and exit code 2 before any mesh.
+TEST_F(Cli, MeshConvergenceBenchRefusesBadInput) {
+  const std::string s = path("mc.h5");
+  ASSERT_EQ(run("synth --size 16 --q0-ratio 2 --dx 1e-4 --h0 5e-6 --seed 4 -o " + s).code, 0);
+  for (const std::string bad : {"--surface " + path("missing.h5"), "--surface " + s + " --refines 4 2",
+                                "--surface " + s + " --uz -1", "--surface " + s + " --refines 0 1 2"}) {
+    const CliRun r = run("bench mesh-convergence " + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
+  }
+}
+
 // The analytic model's curve through the thesis's quartic fit (eq. 5.4): Persson's
 // erf(sqrt 2 s) = sqrt(8/pi) s - (4 sqrt 2 / (3 sqrt pi)) s^3 + ..., so kappa and Omega are known.
 TEST_F(Cli, AnalyticModelReportsTheAreaLoadFits) {
