@@ -579,30 +579,33 @@ HeightMap comparison_scene(double h0) {
   return synthesize(sp).map;
 }
 
-// Its FEM press: about a third of contact whatever h0 (uz proportional to h0), two steps.
+// Its press: about a third of contact whatever h0 (uz proportional to h0), two steps.
+constexpr int kComparisonPressSteps = 2;
+constexpr double kComparisonTolerance = 1e-4;
+double comparison_uz(double h0) { return 2.5e-4 * h0 / 3e-5; }
+
+// The press as FEM options (the accuracy bench's runs).
 ContactTestOptions comparison_press(double h0, int refine, double slope) {
   ContactTestOptions fo;
-  fo.uz = 2.5e-4 * h0 / 3e-5;
-  fo.normal_steps = 2;
+  fo.uz = comparison_uz(h0);
+  fo.normal_steps = kComparisonPressSteps;
   fo.refine = refine;
-  fo.tolerance = 1e-4;
+  fo.tolerance = kComparisonTolerance;
   fo.rms_slope = slope;
   return fo;
 }
 
-// Its shear test as a scene both models run: the press above, then the top moved by half the
+// The press and then a shear test, as a scene both models run: the top moved by half the
 // press in two steps (the face slides several lattice cells on the gentle scenes, about one on
 // the steepest).
-ContactScene comparison_shear(const ContactTestOptions& press) {
+ContactScene comparison_shear(double h0, int refine) {
   ContactScene sc;
-  sc.uz = press.uz;
-  sc.normal_steps = press.normal_steps;
-  sc.ux = press.uz / 2;
+  sc.uz = comparison_uz(h0);
+  sc.normal_steps = kComparisonPressSteps;
+  sc.ux = sc.uz / 2;
   sc.shear_steps = 2;
-  sc.refine = press.refine;
-  sc.tolerance = press.tolerance;
-  sc.young = press.young;
-  sc.poisson = press.poisson;
+  sc.refine = refine;
+  sc.tolerance = kComparisonTolerance;
   return sc;
 }
 
@@ -620,15 +623,14 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
     const HeightMap m = comparison_scene(h0);
     const double slope = rms_slope_finite_difference(m, 1);
     // One FEM run gives both: A/A0 at the end of its press, mu at the end of its shear.
-    const ContactTestOptions fo = comparison_press(h0, refine, slope);
-    ContactScene shear = comparison_shear(fo);
+    ContactScene shear = comparison_shear(h0, refine);
     shear.model = ContactModel::fem;
     double t0 = now();
     const SceneResult fr = run_contact_scene(m, shear, MPI_COMM_NULL);
     const double fem_wall = now() - t0;
     if (fr.steps.empty()) throw std::runtime_error("spectral-vs-fem: no FEM step finished at h0 " + std::to_string(h0) + " m");
     // The press's last step (or the last that finished; fem_converged says which).
-    const ContactStep& fs = fr.steps[std::min(fr.steps.size(), std::size_t(fo.normal_steps)) - 1];
+    const ContactStep& fs = fr.steps[std::min(fr.steps.size(), std::size_t(shear.normal_steps)) - 1];
     const double fem_mu = final_mu(fr, shear);
     nlohmann::json row = {{"h0", h0}, {"rms_slope", slope}, {"refine", refine}, {"fem_nodes", fr.unknowns},
                           {"fem_fz", fs.fz}, {"fem_area_fraction", fs.area_fraction}, {"fem_converged", !fr.failed},
@@ -638,7 +640,7 @@ nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int r
       SpectralTestOptions so;
       so.pressure = fs.fz / (m.lx() * m.ly());
       so.steps = 2;
-      so.body = ElasticBody{fo.young, fo.poisson, m.lx()};
+      so.body = ElasticBody{shear.young, shear.poisson, m.lx()};
       so.rms_slope = slope;
       so.solver.threads = 1;
       t0 = now();
