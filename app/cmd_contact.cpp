@@ -92,8 +92,10 @@ double parse_thickness(const std::string& text, double fallback) {
 
 // The area-load fits over the converged normal steps: the low-pressure kappa (sec. 5.2.3) from
 // any of them, the quartic (eq. 5.4) and YAM (eq. 3.179, with the quartic's kappa) from four or
-// more; null without a converged normal step.
-nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool talk) {
+// more; null without a converged normal step. `central_ratio` > 0 (central- over forward-difference
+// rms slope of the obstacle) adds the low-pressure kappa with sigma* normalised by the central
+// slope: kappa scales with the slope that divides sigma*, and thesis-era codes took gradient().
+nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool talk, double central_ratio = 0) {
   std::vector<double> s, a;
   for (const auto& st : steps)
     if (st.converged && st.ux == 0 && st.sigma_star > 0) {
@@ -104,9 +106,13 @@ nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool ta
   // The low-pressure regression of sec. 5.2.3 needs no minimum: any step below 15 % counts.
   const LowPressureKappa lp = fit_low_pressure_kappa(s, a);
   nlohmann::json low = {{"kappa", lp.kappa}, {"points", lp.points}, {"max_area_fraction", lp.max_area}};
-  if (talk && lp.points > 0)
-    std::printf("  low-pressure kappa (sec. 5.2.3, A/A0 <= %.2f, %zu step%s): %.4f\n", lp.max_area, lp.points,
+  if (central_ratio > 0) low["kappa_central_slope"] = lp.kappa * central_ratio;
+  if (talk && lp.points > 0) {
+    std::printf("  low-pressure kappa (sec. 5.2.3, A/A0 <= %.2f, %zu step%s): %.4f", lp.max_area, lp.points,
                 lp.points == 1 ? "" : "s", lp.kappa);
+    if (central_ratio > 0) std::printf(" (%.4f with sigma* over the central-difference slope)", lp.kappa * central_ratio);
+    std::printf("\n");
+  }
   if (s.size() < 4) return nlohmann::json{{"low_pressure", low}};
   try {
     const QuarticAreaFit q = fit_quartic_area(s, a);
@@ -128,10 +134,14 @@ nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool ta
 
 // The curve's summaries in the JSON: the shear test's peak (static friction) and the area-load
 // fits of the normal steps. Returns the peak step (nullptr without one).
-const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<ContactStep>& steps, bool talk) {
+// `obstacle` is the surface whose forward-difference slope normalised sigma*.
+const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<ContactStep>& steps, bool talk,
+                                       const HeightMap& obstacle) {
   const ContactStep* peak = peak_friction(steps);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - steps.data()) + 1}};
-  j["area_load_fit"] = area_load_fit_json(steps, talk);
+  const double central = rms_slope_finite_difference(obstacle, 0, SlopeStencil::central);
+  j["rms_slope_central"] = central;
+  j["area_load_fit"] = area_load_fit_json(steps, talk, central / rms_slope_finite_difference(obstacle));
   return peak;
 }
 
@@ -328,7 +338,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
                             {"steps", steps},
                             {"validity", validity.json},
                             {"provenance", prov.to_json()}};
-  const ContactStep* peak = add_curve_summaries(j, r.steps, talk);
+  const ContactStep* peak = add_curve_summaries(j, r.steps, talk, surface.map);
   write_contact_files(c, j, r.steps, r.nx, r.ny, r.spacing, prov);
   if (r.failed)
     return report_failure(c, r.steps, o.shear ? "relative change per geometry iteration" : "Polonsky-Keer error per iteration");
@@ -463,7 +473,7 @@ int run_contact(ContactCli c) {
                       {"steps", steps},
                       {"validity", validity.json},
                       {"provenance", prov.to_json()}};
-  const ContactStep* peak = add_curve_summaries(j, r.steps, talk);
+  const ContactStep* peak = add_curve_summaries(j, r.steps, talk, s.map);
   if (rank == 0) write_contact_files(c, j, r.steps, r.face_nx, r.face_ny, r.face_spacing, prov);
   if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
   if (r.failed) return rank == 0 ? report_failure(c, r.steps, "relative change per Signorini iteration") : 3;

@@ -61,6 +61,7 @@ std::string format_analysis(const AnalysisReport& r) {
   row(out, "Sku", r.sku, std::nullopt, "", pre);
   row(out, "rms slope, spectral", r.rms_slope_spectral, p.rms_slope_spectral, "sqrt(2 m2)", pre);
   row(out, "rms slope, finite diff.", r.rms_slope_fd, std::nullopt, "forward differences", pre);
+  row(out, "rms slope, central diff.", r.rms_slope_central, std::nullopt, "central, as gradient()", pre);
   row(out, "m0", r.moments.m0, p.m0, "m^2", pre);
   row(out, "m2", r.moments.m2, p.m2, "", pre);
   row(out, "m4", r.moments.m4, p.m4, "1/m^2", pre);

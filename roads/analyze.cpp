@@ -85,6 +85,7 @@ AnalysisReport analyze_surface(const LoadedSurface& s, const AnalysisOptions& op
   r.ssk = hs.ssk;
   r.sku = hs.sku;
   r.rms_slope_fd = rms_slope_finite_difference(m, opt.threads);
+  r.rms_slope_central = rms_slope_finite_difference(m, opt.threads, SlopeStencil::central);
 
   const double alpha = r.moments.alpha();
   if (!r.profile) {
@@ -145,6 +146,7 @@ nlohmann::json AnalysisReport::to_json() const {
   j["sku"] = sku;
   j["rms_slope_spectral"] = rms_slope_spectral;
   j["rms_slope_fd"] = rms_slope_fd;
+  j["rms_slope_central"] = rms_slope_central;
   j["m0"] = moments.m0;
   j["m2"] = moments.m2;
   j["m4"] = moments.m4;

@@ -42,7 +42,7 @@ struct AnalysisReport {
   double tilt_x = 0, tilt_y = 0, offset = 0;
   // Measured
   double h0 = 0, sa = 0, ssk = 0, sku = 0;
-  double rms_slope_spectral = 0, rms_slope_fd = 0;
+  double rms_slope_spectral = 0, rms_slope_fd = 0, rms_slope_central = 0;  // fd: forward differences
   SpectralMoments moments;
   RadialPsd psd;
   double nyquist = 0;

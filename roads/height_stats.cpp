@@ -1,6 +1,7 @@
 #include "roads/height_stats.hpp"
 
 #include <cmath>
+#include <cstddef>
 
 #include <array>
 #include <vector>
@@ -60,20 +61,29 @@ HeightStats height_stats(const HeightMap& m, int threads) {
   return s;
 }
 
-double rms_slope_finite_difference(const HeightMap& m, int threads) {
+double rms_slope_finite_difference(const HeightMap& m, int threads, SlopeStencil stencil) {
   const std::size_t nx = m.nx, ny = m.ny;
-  const std::size_t ex = m.periodic ? nx : nx - 1;  // x differences per row
-  const std::size_t ey = m.periodic ? ny : ny - 1;  // rows with a y difference
+  // A difference at i spans [i - back, i + 1]: back 0 forward (over dx), back 1 central (over 2 dx).
+  const std::size_t back = stencil == SlopeStencil::central ? 1 : 0;
+  const double span = double(back + 1);
+  const std::size_t ex = m.periodic ? nx : nx - 1 - back;  // x differences per row
+  const std::size_t ey = m.periodic ? ny : ny - 1 - back;  // rows with a y difference
+  const auto wrap = [](std::size_t i, std::ptrdiff_t d, std::size_t n) {
+    return std::size_t((std::ptrdiff_t(i) + d + std::ptrdiff_t(n)) % std::ptrdiff_t(n));
+  };
+  const std::ptrdiff_t b = std::ptrdiff_t(back);
   const auto g = row_sums<2>(ny, threads, [&](std::size_t iy, std::array<double, 2>& a) {
     double gx = 0, gy = 0;
-    for (std::size_t ix = 0; ix < ex; ++ix) {
-      const double d = (m(ix + 1 == nx ? 0 : ix + 1, iy) - m(ix, iy)) / m.dx;
+    for (std::size_t k = 0; k < ex; ++k) {
+      const std::size_t ix = m.periodic ? k : k + back;  // the difference's centre
+      const double d = (m(wrap(ix, 1, nx), iy) - m(wrap(ix, -b, nx), iy)) / (span * m.dx);
       gx += d * d;
     }
-    if (!m.is_profile() && iy < ey) {
-      const std::size_t jy = iy + 1 == ny ? 0 : iy + 1;
+    const bool has_y = m.periodic ? true : (iy >= back && iy + 1 < ny);
+    if (!m.is_profile() && has_y) {
+      const std::size_t jy = wrap(iy, 1, ny), ky = wrap(iy, -b, ny);
       for (std::size_t ix = 0; ix < nx; ++ix) {
-        const double d = (m(ix, jy) - m(ix, iy)) / m.dy;
+        const double d = (m(ix, jy) - m(ix, ky)) / (span * m.dy);
         gy += d * d;
       }
     }

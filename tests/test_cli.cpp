@@ -128,7 +128,7 @@ TEST_F(Cli, SynthThenAnalyzeWritesEveryDocumentedKey) {
   EXPECT_NE(r.out.find("non-standard baseline"), std::string::npos);
   std::ifstream f(j);
   const auto js = nlohmann::json::parse(f);
-  for (const char* key : {"nx", "ny", "dx", "dy", "h0", "sa", "ssk", "sku", "rms_slope_spectral", "rms_slope_fd", "m0",
+  for (const char* key : {"nx", "ny", "dx", "dy", "h0", "sa", "ssk", "sku", "rms_slope_spectral", "rms_slope_fd", "rms_slope_central", "m0",
                           "m2", "m4", "alpha", "hurst_fit", "q0_fit", "plateau_fit", "summit_density", "summit_mean",
                           "summit_var", "mpd", "mpd_std", "etd", "kappa_persson", "kappa_bgt"}) {
     ASSERT_TRUE(js.contains(key)) << key;
@@ -339,6 +339,25 @@ TEST_F(Cli, AnalyticModelReportsTheAreaLoadFits) {
   EXPECT_GE(low["points"].get<int>(), 2);
   EXPECT_LT(low["kappa"].get<double>(), std::sqrt(8 / pi));
   EXPECT_GT(low["kappa"].get<double>(), 0.99 * std::sqrt(8 / pi));
+}
+
+// sigma* can be normalised by either slope estimate; the JSON gives kappa for both, and they
+// differ by exactly the slopes' ratio (kappa = A/A0 / sigma*, sigma* ~ 1 / slope).
+TEST_F(Cli, SpectralContactGivesKappaForTheCentralDifferenceSlopeToo) {
+  const std::string s = path("s.h5"), j = path("sp.json");
+  ASSERT_EQ(run("synth --size 64 --dx 1e-4 --h0 1e-5 --seed 2 -o " + s).code, 0);
+  const CliRun r = run("contact --model spectral --thickness inf --pressure 2e-3 --steps 3 --surface " + s +
+                       " --json " + j);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("with sigma* over the central-difference slope"), std::string::npos) << r.out;
+  std::ifstream f(j);
+  const auto js = nlohmann::json::parse(f);
+  const double fwd = js["rms_slope"].get<double>(), cen = js["rms_slope_central"].get<double>();
+  EXPECT_LT(cen, fwd);  // the central stencil damps the short waves
+  EXPECT_GT(cen, 0.5 * fwd);
+  const auto& low = js["area_load_fit"]["low_pressure"];
+  ASSERT_GE(low["points"].get<int>(), 1);
+  EXPECT_NEAR(low["kappa_central_slope"].get<double>() / low["kappa"].get<double>(), cen / fwd, 1e-12);
 }
 
 TEST_F(Cli, ContactAutoModelSaysWhichChecksDecided) {

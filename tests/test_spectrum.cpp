@@ -103,6 +103,24 @@ TEST(HeightStats, FiniteDifferenceSlopeOfSinusoidMatchesTheDiscreteFormula) {
   EXPECT_NEAR(rms_slope_finite_difference(h) / (2 * a / dx * std::sin(q * dx / 2) / std::sqrt(2.0)), 1.0, 1e-10);
 }
 
+TEST(HeightStats, CentralDifferenceSlopeOfSinusoidMatchesTheDiscreteFormula) {
+  // Central differences of a sin(q x) have rms (a / dx) sin(q dx) / sqrt 2, on the periodic map
+  // and on its non-periodic copy (interior differences only: still exact to rounding for a
+  // whole number of periods, since sin^2 averages over the 300 - 2 centres to within 1/n).
+  const double L = 0.03, a = 2e-4;
+  const std::size_t n = 300;
+  HeightMap h = sinusoid(n, L, a, 0, 23);  // along y: the other axis than the forward test
+  const double q = 2 * kPi * 23 / L, dx = L / n, expect = a / dx * std::sin(q * dx) / std::sqrt(2.0);
+  EXPECT_NEAR(rms_slope_finite_difference(h, 0, SlopeStencil::central) / expect, 1.0, 1e-10);
+  h.periodic = false;
+  EXPECT_NEAR(rms_slope_finite_difference(h, 0, SlopeStencil::central) / expect, 1.0, 2.0 / double(n));
+  // The stencil damps short waves: at 23 waves over 300 cells the central slope is
+  // cos(q dx / 2) times the forward one.
+  h.periodic = true;
+  EXPECT_NEAR(rms_slope_finite_difference(h, 0, SlopeStencil::central) / rms_slope_finite_difference(h),
+              std::cos(q * dx / 2), 1e-10);
+}
+
 TEST(HeightStats, SkewnessAndKurtosisOfASinusoid) {
   const HeightMap h = sinusoid(200, 0.02, 1e-4, 4, 0);
   const HeightStats s = height_stats(h);
