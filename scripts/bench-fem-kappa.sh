@@ -57,6 +57,9 @@ for lg in logs:
     fem, spec = load(f"{w}/kA{lg}.json"), load(f"{w}/sA{lg}.json")
     if fem is None:
         print(f"{lg:>7}  (no FEM result)"); continue
+    if fem["status"] != "ok":
+        first = next((st["message"] for st in fem["steps"] if not st["converged"]), "")
+        print(f"{lg:>7} {fem['rms_slope']:9.4f}  FEM failed after {fem['wall_s']:.0f} s: {first}"); continue
     # Both runs read the same surface; older JSON lacks the central slope, the other may have it.
     central = next((d["rms_slope_central"] for d in (fem, spec) if d and "rms_slope_central" in d), nan)
     kf, kfc, areas = kappas(fem, central)
