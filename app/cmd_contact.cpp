@@ -134,14 +134,14 @@ nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool ta
 
 // The curve's summaries in the JSON: the shear test's peak (static friction) and the area-load
 // fits of the normal steps. Returns the peak step (nullptr without one).
-// `obstacle` is the surface whose forward-difference slope normalised sigma*.
+// `obstacle` is the surface whose forward-difference slope (j["rms_slope"]) normalised sigma*.
 const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<ContactStep>& steps, bool talk,
                                        const HeightMap& obstacle) {
   const ContactStep* peak = peak_friction(steps);
   if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - steps.data()) + 1}};
   const double central = rms_slope_finite_difference(obstacle, 0, SlopeStencil::central);
   j["rms_slope_central"] = central;
-  j["area_load_fit"] = area_load_fit_json(steps, talk, central / rms_slope_finite_difference(obstacle));
+  j["area_load_fit"] = area_load_fit_json(steps, talk, central / j["rms_slope"].get<double>());
   return peak;
 }
 

@@ -1,7 +1,6 @@
 #include "roads/height_stats.hpp"
 
 #include <cmath>
-#include <cstddef>
 
 #include <array>
 #include <vector>
@@ -68,20 +67,19 @@ double rms_slope_finite_difference(const HeightMap& m, int threads, SlopeStencil
   const double span = double(back + 1);
   const std::size_t ex = m.periodic ? nx : nx - 1 - back;  // x differences per row
   const std::size_t ey = m.periodic ? ny : ny - 1 - back;  // rows with a y difference
-  const auto wrap = [](std::size_t i, std::ptrdiff_t d, std::size_t n) {
-    return std::size_t((std::ptrdiff_t(i) + d + std::ptrdiff_t(n)) % std::ptrdiff_t(n));
-  };
-  const std::ptrdiff_t b = std::ptrdiff_t(back);
+  // Neighbours with periodic wrap-around, by comparison rather than a modulo in the inner loop.
+  const auto next = [](std::size_t i, std::size_t n) { return i + 1 == n ? 0 : i + 1; };
+  const auto prev = [back](std::size_t i, std::size_t n) { return back == 0 ? i : (i == 0 ? n - 1 : i - 1); };
   const auto g = row_sums<2>(ny, threads, [&](std::size_t iy, std::array<double, 2>& a) {
     double gx = 0, gy = 0;
     for (std::size_t k = 0; k < ex; ++k) {
       const std::size_t ix = m.periodic ? k : k + back;  // the difference's centre
-      const double d = (m(wrap(ix, 1, nx), iy) - m(wrap(ix, -b, nx), iy)) / (span * m.dx);
+      const double d = (m(next(ix, nx), iy) - m(prev(ix, nx), iy)) / (span * m.dx);
       gx += d * d;
     }
     const bool has_y = m.periodic ? true : (iy >= back && iy + 1 < ny);
     if (!m.is_profile() && has_y) {
-      const std::size_t jy = wrap(iy, 1, ny), ky = wrap(iy, -b, ny);
+      const std::size_t jy = next(iy, ny), ky = prev(iy, ny);
       for (std::size_t ix = 0; ix < nx; ++ix) {
         const double d = (m(ix, jy) - m(ix, ky)) / (span * m.dy);
         gy += d * d;
