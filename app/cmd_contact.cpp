@@ -56,6 +56,8 @@ nlohmann::json step_json(const ContactStep& s) {
           {"mu", s.mu},
           {"separation", s.separation},
           {"max_penetration", s.max_penetration},
+          {"max_penetration_at", {s.penetration_x, s.penetration_y}},
+          {"nodes_over_max_penetration", s.nodes_over_penetration},
           {"signorini_iterations", s.signorini_iterations},
           {"active_set_iterations", s.active_set_iterations},
           {"linear_iterations", s.linear_iterations},

@@ -251,6 +251,8 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   r = run("contact --surface " + s + " --problem normal --uz 1e-4 --steps 1 --refine 1 --tol 0.5 --max-penetration 1e-15 --json " + j);
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("penetration"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("obstacle slope"), std::string::npos) << r.err;  // where, and how steep there
+  EXPECT_NE(r.err.find("deeper than the allowed"), std::string::npos) << r.err;
   r = run("contact --surface " + s + " --problem normal --uz 1e-4 --extrapolate 1");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("--extrapolate"), std::string::npos) << r.err;
@@ -311,7 +313,7 @@ TEST_F(Cli, ContactSpectralModelReportsEveryStep) {
 TEST_F(Cli, MeshConvergenceBenchRefusesBadInput) {
   const std::string s = path("mc.h5");
   ASSERT_EQ(run("synth --size 16 --q0-ratio 2 --dx 1e-4 --h0 5e-6 --seed 4 -o " + s).code, 0);
-  for (const std::string bad : {"--surface " + path("missing.h5"), "--surface " + s + " --refines 4 2",
+  for (const std::string& bad : {"--surface " + path("missing.h5"), "--surface " + s + " --refines 4 2",
                                 "--surface " + s + " --uz -1", "--surface " + s + " --refines 0 1 2"}) {
     const CliRun r = run("bench mesh-convergence " + bad);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.err;

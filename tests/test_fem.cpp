@@ -158,12 +158,16 @@ TEST(Fem, PenetrationLimitKeepsALooseIterationGoing) {
   const ContactSolution a = loose.solve(load);
   ASSERT_TRUE(a.converged) << a.message;
   ASSERT_GT(a.max_penetration, 0.0);
+  // The reported deepest node is where the obstacle is that much above the deformed face.
+  EXPECT_NEAR(ob.height(a.deepest_at.x, a.deepest_at.y) - a.deepest_at.z, a.max_penetration, 1e-15);
+  EXPECT_EQ(a.nodes_over_penetration, 0u);  // no limit given, nothing counted
   load.max_penetration = 0.5 * a.max_penetration;
   ElasticBlock limited(b);
   const ContactSolution c = limited.solve(load);
   ASSERT_TRUE(c.converged) << c.message;
   EXPECT_GT(c.outer_iterations, a.outer_iterations);
   EXPECT_LT(c.max_penetration, a.max_penetration);
+  EXPECT_EQ(c.nodes_over_penetration > 0, c.max_penetration > load.max_penetration);
 }
 
 // Slow-mode extrapolation on a linear fixed-point iteration whose answer is known: the damped

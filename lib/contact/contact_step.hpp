@@ -12,6 +12,10 @@ struct ContactStep {
   double uz = 0, ux = 0, fz = 0, fx = 0, fy = 0;
   double area_fraction = 0, contact_area = 0, sigma_star = 0, mu = 0;
   double separation = 0, max_penetration = 0;
+  // FEM: where the deepest face node is (deformed x, y, m) and how many nodes are deeper than
+  // the allowed penetration: one stray node on a steep flank or a whole patch.
+  double penetration_x = 0, penetration_y = 0;
+  std::size_t nodes_over_penetration = 0;
   // FEM: geometry (Signorini), active-set and CG iterations; spectral: 1, 0 and the
   // constrained-CG iterations.
   int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;

@@ -137,6 +137,9 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.mu = s.fz > 0 ? s.fx / s.fz : 0.0;
     st.separation = s.mean_separation;
     st.max_penetration = s.max_penetration;
+    st.penetration_x = s.deepest_at.x;
+    st.penetration_y = s.deepest_at.y;
+    st.nodes_over_penetration = s.nodes_over_penetration;
     st.signorini_iterations = s.outer_iterations;
     st.active_set_iterations = s.active_set_iterations;
     st.linear_iterations = s.linear_iterations;
@@ -152,9 +155,14 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       // Converged by the change criterion, yet a node sits visibly inside the obstacle: the
       // tolerance was too loose for this scene. Never report that as a result.
       st.converged = false;
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "penetration %.3g m left, above the allowed %.3g m (--max-penetration); tighten --tol",
-                    s.max_penetration, opt.max_penetration);
+      // Where and how widely: the obstacle's slope there says whether a steep flank is to blame.
+      const Vec3 n = ob.normal(s.deepest_at.x, s.deepest_at.y);
+      char buf[320];
+      std::snprintf(buf, sizeof buf,
+                    "penetration %.3g m left at x %.3f mm, y %.3f mm (obstacle slope %.2f there; %zu face node%s deeper "
+                    "than the allowed %.3g m, --max-penetration); tighten --tol",
+                    s.max_penetration, 1e3 * s.deepest_at.x, 1e3 * s.deepest_at.y, std::hypot(n.x, n.y) / n.z,
+                    s.nodes_over_penetration, s.nodes_over_penetration == 1 ? "" : "s", opt.max_penetration);
       st.message = buf;
     }
     st.history = std::move(s.history);

@@ -375,10 +375,15 @@ struct ElasticBlock::Impl {
                                     const ActiveSetControl& control, ContactSolution& out);
   // Step 4: the correction u* - u on the face; prev_corr (3 per face node) becomes this one.
   Correction measure_correction(const std::vector<FaceNode>& face, Vec ustar, std::vector<double>& prev_corr) const;
-  // {summed separation, deepest penetration} (m) of this rank's face nodes for the
-  // displacement array a.
-  std::array<double, 2> face_gaps(const std::vector<FaceNode>& face, const PetscScalar* a,
-                                  const ContactLoad& load) const;
+  // Vertical gaps of this rank's face nodes for the displacement array a (m): their summed
+  // separation, the deepest penetration, where that node is, and how many nodes are deeper
+  // than load.max_penetration.
+  struct FaceGaps {
+    double separation = 0, deepest = 0;
+    Vec3 deepest_at;
+    std::size_t over_limit = 0;
+  };
+  FaceGaps face_gaps(const std::vector<FaceNode>& face, const PetscScalar* a, const ContactLoad& load) const;
   double deepest_penetration(const std::vector<FaceNode>& face, Vec v, const ContactLoad& load) const;  // collective
   // {Fx, Fy, Fz} on the top face for displacement v (Fz > 0 in compression); `work` is
   // overwritten. Collective.
@@ -775,23 +780,27 @@ ElasticBlock::Impl::Correction ElasticBlock::Impl::measure_correction(const std:
   return c;
 }
 
-std::array<double, 2> ElasticBlock::Impl::face_gaps(const std::vector<FaceNode>& face, const PetscScalar* a,
-                                                    const ContactLoad& load) const {
+ElasticBlock::Impl::FaceGaps ElasticBlock::Impl::face_gaps(const std::vector<FaceNode>& face, const PetscScalar* a,
+                                                           const ContactLoad& load) const {
   const PetscInt rstart = 3 * PetscInt(own_begin);
-  double sep = 0, pen = 0;
+  FaceGaps out;
   for (const FaceNode& f : face) {
     const Vec3 p{f.x0.x + a[f.row[0] - rstart], f.x0.y + a[f.row[1] - rstart], a[f.row[2] - rstart]};
     const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
-    sep += std::max(0.0, p.z - h);
-    pen = std::max(pen, h - p.z);
+    out.separation += std::max(0.0, p.z - h);
+    if (h - p.z > out.deepest) {
+      out.deepest = h - p.z;
+      out.deepest_at = p;
+    }
+    if (load.max_penetration > 0 && h - p.z > load.max_penetration) ++out.over_limit;
   }
-  return {sep, pen};
+  return out;
 }
 
 double ElasticBlock::Impl::deepest_penetration(const std::vector<FaceNode>& face, Vec v, const ContactLoad& load) const {
   const PetscScalar* a;
   VecGetArrayRead(v, &a);
-  const double pen = face_gaps(face, a, load)[1];
+  const double pen = face_gaps(face, a, load).deepest;
   VecRestoreArrayRead(v, &a);
   double pen_g = 0;
   MPI_Allreduce(&pen, &pen_g, 1, MPI_DOUBLE, MPI_MAX, comm);
@@ -825,7 +834,7 @@ void ElasticBlock::Impl::output_results(const std::vector<FaceNode>& face, const
   out.fz = forces[2];
   const PetscScalar* uu;
   VecGetArrayRead(u, &uu);
-  const auto [sep, pen] = face_gaps(face, uu, load);
+  const FaceGaps gaps = face_gaps(face, uu, load);
   if (load.face_maps) {
     const std::size_t nfx = std::size_t(fnx + 1), nf = nfx * std::size_t(fny + 1);
     std::vector<double> local(3 * nf, 0.0);
@@ -846,10 +855,21 @@ void ElasticBlock::Impl::output_results(const std::vector<FaceNode>& face, const
     out.face_status.assign(global.begin() + 2 * nf, global.end());
   }
   VecRestoreArrayRead(u, &uu);
-  double sep_g = 0;
-  MPI_Allreduce(&sep, &sep_g, 1, MPI_DOUBLE, MPI_SUM, comm);
-  MPI_Allreduce(&pen, &out.max_penetration, 1, MPI_DOUBLE, MPI_MAX, comm);
-  out.mean_separation = sep_g / double(out.face_nodes);
+  double sums[2] = {gaps.separation, double(gaps.over_limit)}, sums_g[2];
+  MPI_Allreduce(sums, sums_g, 2, MPI_DOUBLE, MPI_SUM, comm);
+  out.mean_separation = sums_g[0] / double(out.face_nodes);
+  out.nodes_over_penetration = std::size_t(sums_g[1]);
+  // The deepest node and where it is: every rank's candidate, the deepest kept.
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const double mine[4] = {gaps.deepest, gaps.deepest_at.x, gaps.deepest_at.y, gaps.deepest_at.z};
+  std::vector<double> all(4 * std::size_t(ranks));
+  MPI_Allgather(mine, 4, MPI_DOUBLE, all.data(), 4, MPI_DOUBLE, comm);
+  std::size_t best = 0;  // offset of the deepest rank's record in `all`
+  for (std::size_t r = 4; r < all.size(); r += 4)
+    if (all[r] > all[best]) best = r;
+  out.max_penetration = all[best];
+  out.deepest_at = {all[best + 1], all[best + 2], all[best + 3]};
 }
 
 FaceModeExtrapolation::Modes ElasticBlock::Impl::face_mode_coordinates(const std::vector<FaceNode>& face,
