@@ -10,10 +10,12 @@
 # Usage: scripts/bench-fem-kappa-mesh.sh [WETROAD] [WORKDIR] [REFINE:LAYERS ...]
 #   default cases: 1:1 1:2 1:4 1:8 2:1 2:2 2:4 2:8 4:1 4:2 (about 35 min on 2 cores, 2 GB).
 #   Finished cases (WORKDIR/fem-r<R>-l<L>.json) are not redone. Not part of make test.
+# $MPIRUN and the case lists split into words on purpose.
+# shellcheck disable=SC2086
 set -eu
 BIN=${1:-build/bin/wetroad}
 W=${2:-build/bench-fem-kappa-mesh}
-[ $# -ge 2 ] && shift 2 || shift $#
+if [ $# -ge 2 ]; then shift 2; else shift $#; fi
 CASES=${*:-1:1 1:2 1:4 1:8 2:1 2:2 2:4 2:8 4:1 4:2}
 mkdir -p "$W"
 export OMP_NUM_THREADS=1

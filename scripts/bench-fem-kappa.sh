@@ -13,10 +13,12 @@
 #   TOL: the Signorini tolerance; default 1e-3, and 3e-4 on the two steepest surfaces (rms
 #   slope > 1.5), where 1e-3 leaves nodes deeper than the penetration limit (the step fails).
 # Long: 15-30 min per h0 on 2 cores, ~9 GB. Not part of make test.
+# $MPIRUN and the case lists split into words on purpose.
+# shellcheck disable=SC2086
 set -eu
 BIN=${1:-build/bin/wetroad}
 W=${2:-build/bench-fem-kappa}
-[ $# -ge 2 ] && shift 2 || shift $#
+if [ $# -ge 2 ]; then shift 2; else shift $#; fi
 LOGS=${*:--4.27 -4.02 -3.77 -3.52 -3.27 -3.15}
 TABLES=$(dirname "$0")/../share/thesis/roughness-tables.json
 mkdir -p "$W"
