@@ -35,18 +35,11 @@ for c in $CASES; do
       --tol 1e-3 --json "$W/fem-r$r-l$l.json" > "$W/fem-r$r-l$l.log" 2>&1 || echo "  failed: see $W/fem-r$r-l$l.log"
   fi
 done
-python3 - "$W" $CASES <<'PY'
+python3 - "$(dirname "$0")" "$W" $CASES <<'PY'
 import json, os, sys
-w, cases = sys.argv[1], sys.argv[2:]
-def normal_points(d):
-    return [(s["area_fraction"], s["area_fraction"] / s["sigma_star"]) for s in d["steps"]
-            if s["ux"] == 0 and s["converged"] and s["sigma_star"] > 0]
-def interpolate(curve, a):
-    # curve: (A/A0, A/A0 / sigma*) with A/A0 rising; None outside its range
-    for (a0, k0), (a1, k1) in zip(curve, curve[1:]):
-        if a0 <= a <= a1:
-            return k0 + (k1 - k0) * (a - a0) / (a1 - a0)
-    return None
+sys.path.insert(0, sys.argv[1])
+from area_load_match import matched
+w, cases = sys.argv[2], sys.argv[3:]
 print("FEM A/A0 / sigma* over the spectral model's at the same A/A0 and face spacing")
 print(f"{'refine':>6} {'layers':>6} {'nodes':>8} {'wall':>7}  per step: A/A0, FEM, spectral, ratio")
 for c in cases:
@@ -57,10 +50,7 @@ for c in cases:
     fem, spec = json.load(open(fem_path)), json.load(open(spec_path))
     if fem["status"] != "ok":
         print(f"{r:>6} {l:>6}  FEM failed: see {w}/fem-r{r}-l{l}.log"); continue
-    curve = normal_points(spec)
-    cols = []
-    for a, k in normal_points(fem):
-        ks = interpolate(curve, a)
-        cols.append(f"{a:.4f} {k:.3f} {ks:.3f} {k / ks:.3f}" if ks else f"{a:.4f} {k:.3f} (outside the spectral curve)")
+    cols = [f"{a:.4f} {k:.3f} {ks:.3f} {k / ks:.3f}" if ks else f"{a:.4f} {k:.3f} (outside the spectral curve)"
+            for a, k, ks in matched(fem, spec)]
     print(f"{r:>6} {l:>6} {fem['nodes']:>8} {fem['wall_s']:6.0f}s  " + " | ".join(cols))
 PY

@@ -5,7 +5,9 @@
 # puts A/A0 near 2 % and 8 %, inside the thesis's 15 % low-pressure range: in the small-slope
 # limit A/A0 depends on uz / h0 alone, so the same multiple works for every h0.
 # Every surface is also pressed by the spectral model (same triangulated obstacle and face
-# spacing), an independent answer that has no h0 dependence at all (small-slope theory scales).
+# spacing; 12 steps to the same uz), an independent answer that has no h0 dependence at all
+# (small-slope theory scales); besides its own fitted kappa, the column "FEM/spec" compares the
+# two at the FEM's contact fractions (scripts/area_load_match.py: fits at different loads differ).
 # kappa is printed over both slope estimates (forward and central differences, see
 # roads/height_stats.hpp), next to Table C.1 (share/thesis/roughness-tables.json).
 # Usage: [TOL=t] scripts/bench-fem-kappa.sh [WETROAD] [WORKDIR] [LOG10_H0 ...]
@@ -32,7 +34,7 @@ for lg in $LOGS; do
   [ -f "$W/A$lg.h5" ] ||
     "$BIN" synth --size 300 --dx 1e-4 --h0 "$h0" --hurst 0.7 --q0-ratio 5 --seed 1 -o "$W/A$lg.h5" -q
   [ -f "$W/sA$lg.json" ] ||
-    "$BIN" contact --surface "$W/A$lg.h5" --model spectral --problem normal --uz "$uz" --steps 2 --refine 2 \
+    "$BIN" contact --surface "$W/A$lg.h5" --model spectral --problem normal --uz "$uz" --steps 12 --refine 2 \
       --json "$W/sA$lg.json" -q 2>/dev/null
   if [ ! -f "$W/kA$lg.json" ]; then
     echo "log10 h0 $lg: h0 $h0 m, uz $uz m, tol $tol ($(date +%T))"
@@ -41,9 +43,11 @@ for lg in $LOGS; do
       echo "  failed: see $W/kA$lg.log"
   fi
 done
-python3 - "$W" "$TABLES" $LOGS <<'PY'
+python3 - "$(dirname "$0")" "$W" "$TABLES" $LOGS <<'PY'
 import json, os, sys
-w, tables, logs = sys.argv[1], sys.argv[2], sys.argv[3:]
+sys.path.insert(0, sys.argv[1])
+from area_load_match import matched
+w, tables, logs = sys.argv[2], sys.argv[3], sys.argv[4:]
 c1 = json.load(open(tables))["datasets"]["A"]["table_c1"]
 thesis = dict(zip(c1["log10_h0"], c1["kappa"]))
 def load(path):
@@ -56,7 +60,7 @@ def kappas(d, central):
     return k, k * central / d["rms_slope"], areas
 print("kappa = A/A0 / sigma*, sigma* = sigma0 / (E* slope); fwd: forward-difference slope, cen: central")
 print(f"{'log h0':>7} {'slope fwd':>9} {'cen':>6} {'A/A0 steps':>14} {'FEM fwd':>8} {'FEM cen':>8} "
-      f"{'spec fwd':>8} {'spec cen':>8} {'C.1':>5} {'FEM wall':>9} {'tol':>6}")
+      f"{'spec fwd':>8} {'spec cen':>8} {'FEM/spec':>8} {'C.1':>5} {'FEM wall':>9} {'tol':>6}")
 nan = float("nan")
 for lg in logs:
     fem, spec = load(f"{w}/kA{lg}.json"), load(f"{w}/sA{lg}.json")
@@ -69,7 +73,10 @@ for lg in logs:
     central = next((d["rms_slope_central"] for d in (fem, spec) if d and "rms_slope_central" in d), nan)
     kf, kfc, areas = kappas(fem, central)
     ks, ksc, _ = kappas(spec, central) if spec else (nan, nan, None)
+    # FEM over spectral A/A0 / sigma* at the FEM's steps (mean), where the spectral curve reaches
+    ratios = [k / kr for _, k, kr in matched(fem, spec) if kr] if spec else []
+    ratio = sum(ratios) / len(ratios) if ratios else nan
     print(f"{lg:>7} {fem['rms_slope']:9.4f} {central:6.3f} {' '.join('%.4f' % a for a in areas):>14} "
-          f"{kf:8.3f} {kfc:8.3f} {ks:8.3f} {ksc:8.3f} {thesis.get(float(lg), nan):5.2f} {fem['wall_s']:8.0f}s "
+          f"{kf:8.3f} {kfc:8.3f} {ks:8.3f} {ksc:8.3f} {ratio:8.3f} {thesis.get(float(lg), nan):5.2f} {fem['wall_s']:8.0f}s "
           f"{fem.get('provenance', {}).get('parameters', {}).get('tolerance', nan):6.0e}")
 PY
