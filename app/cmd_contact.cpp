@@ -529,8 +529,9 @@ Command add_contact(CLI::App& root) {
                  "contact-face spacing = surface spacing / refine (fem mesh; spectral grid on the triangulated surface)")
       ->capture_default_str();
   s->add_option("--height", c->opt.height, "block height in m (default: the period, a cube)");
-  s->add_option("--layers", c->opt.layers_per_level, "brick layers at each in-plane spacing (more: softer, more accurate bulk; 4 converge it, 1 is too stiff: "
-                "A/A0 at a given load ~25 % low at refine 1-2, see README)")
+  s->add_option("--layers", c->opt.layers_per_level,
+                "brick layers at each in-plane spacing (more: softer, more accurate bulk; 4 converge it, "
+                "1 is too stiff: A/A0 at a given load ~25 % low at refine 1-2, see README)")
       ->capture_default_str();
   s->add_option("--coarsen", c->opt.max_coarsenings, "in-plane spacing doublings allowed away from the face")
       ->capture_default_str();

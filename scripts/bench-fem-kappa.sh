@@ -12,8 +12,9 @@
 # roads/height_stats.hpp), next to Table C.1 (share/thesis/roughness-tables.json).
 # Usage: [TOL=t] scripts/bench-fem-kappa.sh [WETROAD] [WORKDIR] [LOG10_H0 ...]
 #   default h0: Table C.1's six values. Finished h0 (WORKDIR/kA<log h0>.json) are not redone.
-#   TOL: the Signorini tolerance; default 1e-3, and 3e-4 on the two steepest surfaces (rms
-#   slope > 1.5), where 1e-3 leaves nodes deeper than the penetration limit (the step fails).
+#   TOL: the Signorini tolerance; default 1e-3, and 3e-4 for log h0 above -3.4 (the two
+#   steepest surfaces, rms slope > 1.5), where 1e-3 leaves nodes deeper than the penetration
+#   limit (the step fails).
 # Long: 15-30 min per h0 on 2 cores, ~9 GB. Not part of make test.
 # $MPIRUN and the case lists split into words on purpose.
 # shellcheck disable=SC2086
