@@ -89,6 +89,17 @@ nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactScene
                                     int rank);
 void plot_mesh_convergence(const nlohmann::json& result, const std::string& path);
 
+// The compliance of small contact spots (issue 4, bar 2: where the bricks' face error comes
+// from): a flat 64 x 64 obstacle (0.1 mm spacing) with a k x k square of vertices raised by
+// 10 um, touched by the FEM block (cube, E = 1, nu = 0.45, `layers` brick layers per level) and
+// by the spectral layer (as thick as the cube) on the same face lattice, the top moved 0.1 um
+// (1 % of the rise: the spot stays the raised vertices). Per spot size and refine: Fz and the
+// contact nodes of both, and the local compliance of the spot, uz / Fz less the far field
+// (the block's uniform compression L / (E A), the layer's L / (M A)); their ratio FEM over
+// spectral is what a node of the bricks' face yields against a pixel of uniform pressure.
+// PETSc must be initialised; the spectral runs on `rank` 0.
+nlohmann::json contact_spot(const std::vector<int>& spots, const std::vector<int>& refines, int layers, int rank);
+
 // Charts of the results above (SVG through gnuplot, reports/plot.hpp).
 void plot_kappa(const nlohmann::json& rows, const std::string& path);
 void plot_spectral_vs_fem(const nlohmann::json& rows, const std::string& path);

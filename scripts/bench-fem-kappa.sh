@@ -10,11 +10,13 @@
 # two at the FEM's contact fractions (scripts/area_load_match.py: fits at different loads differ).
 # kappa is printed over both slope estimates (forward and central differences, see
 # roads/height_stats.hpp), next to Table C.1 (share/thesis/roughness-tables.json).
-# Usage: [TOL=t] scripts/bench-fem-kappa.sh [WETROAD] [WORKDIR] [LOG10_H0 ...]
+# Usage: [TOL=t] [REFINE=r] scripts/bench-fem-kappa.sh [WETROAD] [WORKDIR] [LOG10_H0 ...]
 #   default h0: Table C.1's six values. Finished h0 (WORKDIR/kA<log h0>.json) are not redone.
 #   TOL: the Signorini tolerance; default 1e-3, and 3e-4 for log h0 above -3.4 (the two
 #   steepest surfaces, rms slope > 1.5), where 1e-3 leaves nodes deeper than the penetration
 #   limit (the step fails).
+#   REFINE: the face refinement of both models (default 2, the thesis's dGamma = dtheta / 2);
+#   runs at 1 and 2 give a Richardson estimate of the mesh-converged kappa (bench-fem-kappa-limit.py).
 # Long: 15-30 min per h0 on 2 cores, ~9 GB. Not part of make test.
 # $MPIRUN and the case lists split into words on purpose.
 # shellcheck disable=SC2086
@@ -31,16 +33,17 @@ MPIRUN="mpirun -np 2"
 for lg in $LOGS; do
   h0=$(python3 -c "print('%.4g' % 10**($lg))")
   uz=$(python3 -c "print('%.4g' % (7.2 * 10**($lg)))")
+  refine=${REFINE:-2}
   tol=${TOL:-$(python3 -c "print('3e-4' if $lg > -3.4 else '1e-3')")}
   [ -f "$W/A$lg.h5" ] ||
     "$BIN" synth --size 300 --dx 1e-4 --h0 "$h0" --hurst 0.7 --q0-ratio 5 --seed 1 -o "$W/A$lg.h5" -q
   [ -f "$W/sA$lg.json" ] ||
-    "$BIN" contact --surface "$W/A$lg.h5" --model spectral --problem normal --uz "$uz" --steps 12 --refine 2 \
+    "$BIN" contact --surface "$W/A$lg.h5" --model spectral --problem normal --uz "$uz" --steps 12 --refine "$refine" \
       --json "$W/sA$lg.json" -q 2>/dev/null
   if [ ! -f "$W/kA$lg.json" ]; then
-    echo "log10 h0 $lg: h0 $h0 m, uz $uz m, tol $tol ($(date +%T))"
+    echo "log10 h0 $lg: h0 $h0 m, uz $uz m, refine $refine, tol $tol ($(date +%T))"
     /usr/bin/time -f "wall %e s, peak memory per rank %M KB" $MPIRUN "$BIN" contact --surface "$W/A$lg.h5" \
-      --problem normal --uz "$uz" --steps 2 --refine 2 --tol "$tol" --json "$W/kA$lg.json" > "$W/kA$lg.log" 2>&1 ||
+      --problem normal --uz "$uz" --steps 2 --refine "$refine" --tol "$tol" --json "$W/kA$lg.json" > "$W/kA$lg.log" 2>&1 ||
       echo "  failed: see $W/kA$lg.log"
   fi
 done
