@@ -292,6 +292,12 @@ int run_spectral_vs_fem(const BenchCli& c) {
 }
 
 int run_spot(const BenchCli& c) {
+  // The spot must fit in the 64 x 64 obstacle with flat ground around it.
+  for (int k : c.spot_sizes)
+    if (k < 1 || k > 16) throw InputError("--sizes", "give spot sizes from 1 to 16 raised vertices per side");
+  for (int r : c.spot_refines)
+    if (r < 1) throw InputError("--refines", "give face refinements >= 1");
+  if (c.spot_layers < 1) throw InputError("--layers", "give at least 1 brick layer per level");
   const FemBenchSession session;
   const int rank = session.rank;
   const auto rows = bench::contact_spot(c.spot_sizes, c.spot_refines, c.spot_layers, rank);

@@ -16,7 +16,8 @@
 #   steepest surfaces, rms slope > 1.5), where 1e-3 leaves nodes deeper than the penetration
 #   limit (the step fails).
 #   REFINE: the face refinement of both models (default 2, the thesis's dGamma = dtheta / 2);
-#   runs at 1 and 2 give a Richardson estimate of the mesh-converged kappa (bench-fem-kappa-limit.py).
+#   runs at 1 and 2 give a Richardson estimate of the mesh-converged kappa, 2 k(2) - k(1) at
+#   the first order observed on a patch (README, contact).
 # Long: 15-30 min per h0 on 2 cores, ~9 GB. Not part of make test.
 # $MPIRUN and the case lists split into words on purpose.
 # shellcheck disable=SC2086
@@ -30,10 +31,10 @@ mkdir -p "$W"
 export OMP_NUM_THREADS=1
 MPIRUN="mpirun -np 2"
 [ "$(id -u)" -eq 0 ] && MPIRUN="mpirun --allow-run-as-root -np 2"
+refine=${REFINE:-2}
 for lg in $LOGS; do
   h0=$(python3 -c "print('%.4g' % 10**($lg))")
   uz=$(python3 -c "print('%.4g' % (7.2 * 10**($lg)))")
-  refine=${REFINE:-2}
   tol=${TOL:-$(python3 -c "print('3e-4' if $lg > -3.4 else '1e-3')")}
   [ -f "$W/A$lg.h5" ] ||
     "$BIN" synth --size 300 --dx 1e-4 --h0 "$h0" --hurst 0.7 --q0-ratio 5 --seed 1 -o "$W/A$lg.h5" -q
