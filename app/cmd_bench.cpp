@@ -482,8 +482,9 @@ Command add_bench(CLI::App& root) {
       "Peak mu and A/A0 of one FEM shear test over face refinements, with Richardson's limit (MPI ok; long).");
   mc->footer(
       "The shear test (Problem A, then B) on --surface at each --refines value (face spacing = surface spacing /\n"
-      "refine). A mesh estimated above 80 % of physical memory is skipped. Over each three successive finished\n"
-      "meshes with one refinement ratio: the observed order, the extrapolated value and its GCI error band.\n"
+      "refine). A mesh estimated above 90 % of physical memory (with the lean AMG hierarchy where the standard\n"
+      "one would not fit) is skipped. Over each three successive finished meshes with one refinement ratio:\n"
+      "the observed order, the extrapolated value and its GCI error band.\n"
       "Example: mpirun -np 2 wetroad bench mesh-convergence --surface d32.h5 --refines 1 2 4 8 --json mc.json");
   mc->add_option("--surface", c->mc_surface, "surface file (periodic HDF5 height map)")->required();
   mc->add_option("--uz", c->mc_uz, "normal displacement of the top, m")->capture_default_str();

@@ -32,7 +32,7 @@ namespace wr::app {
 namespace {
 
 struct ContactCli {
-  std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu;
+  std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu, amg = "auto";
   ContactTestOptions opt;
   int steps = 4;
   int shear_steps = 0;  // 0: as --steps
@@ -399,6 +399,7 @@ int run_contact(ContactCli c) {
   c.opt.shear = c.problem == "shear";
   if (c.opt.shear && c.opt.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
   check_extrapolation_block(c.opt.extrapolate_every);
+  c.opt.amg = parse_amg_hierarchy(c.amg, "--amg");
   c.opt.normal_steps = c.steps;
   c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
   c.opt.follow_geometry = !c.vertical;
@@ -446,7 +447,7 @@ int run_contact(ContactCli c) {
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
                      {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
-                     {"follow_geometry", c.opt.follow_geometry}, {"petsc", c.petsc}};
+                     {"follow_geometry", c.opt.follow_geometry}, {"amg", c.amg}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
       "(thesis Alg. 1), PDAS + CG/GAMG";
@@ -468,6 +469,7 @@ int run_contact(ContactCli c) {
                       {"elements", r.elements},
                       {"layers", r.layers},
                       {"coarsenings", r.coarsenings},
+                      {"amg", amg_hierarchy_name(r.amg)},
                       {"face_spacing", r.face_spacing},
                       {"rms_slope", r.rms_slope},
                       {"e_star", r.e_star},
@@ -480,8 +482,9 @@ int run_contact(ContactCli c) {
   if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
   if (r.failed) return rank == 0 ? report_failure(c, r.steps, "relative change per Signorini iteration") : 3;
   if (talk) {
-    std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s)\n",
-                r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks);
+    std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s), "
+                "%s AMG hierarchy\n",
+                r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks, amg_hierarchy_name(r.amg));
     print_peak(peak, r.steps);
     std::printf("  timing [s]: setup %.2f  linearise %.2f  rotate %.2f  solve %.2f  total %.2f\n", r.wall_setup,
                 t_lin, t_rot, t_sol, r.wall_s);
@@ -567,6 +570,11 @@ Command add_contact(CLI::App& root) {
   s->add_option("--json", c->json, "write the per-step results as JSON (SI units)");
   s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5");
   s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)");
+  s->add_option("--amg", c->amg,
+                "fem: CG's AMG hierarchy: standard (smoothed aggregation), lean (unsmoothed aggregation, "
+                "all-at-once products: ~5.3 instead of ~8.4 KiB per node, more CG iterations), or auto (lean only "
+                "where standard would exceed 80 % of this host's memory)")
+      ->capture_default_str();
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   s->add_flag("--facet-normals", c->opt.facet_normals,

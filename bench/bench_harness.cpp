@@ -1,5 +1,7 @@
 #include "bench/bench_harness.hpp"
 
+#include "lib/fem/amg_hierarchy.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -799,14 +801,16 @@ void plot_accuracy(const nlohmann::json& result, const std::string& path) {
 namespace wr::bench {
 namespace {
 
-// Resident bytes per FEM node measured at the thesis's scale (300 x 300, refine 2: 4.7 GB per
-// rank for 1.05M nodes on 2 ranks, about 9 KB per node in all), and nodes per face node of the
-// graded cube (3.0 there); together a pre-flight estimate that decides whether a mesh is tried.
-constexpr double kBytesPerNode = 9e3, kNodesPerFaceNode = 3.0;
+// Nodes per face node of the graded cube (300 x 300 obstacle: 2.90 at refine 2, 2.73 at
+// refine 4) and the share of memory up to which a lean-hierarchy run is tried (300 x 300 at
+// refine 4: 3.93M nodes ran in 19.5 GiB of 23.5 GiB, 83 %); with fem_memory_estimate a pre-flight
+// check that decides whether a mesh is tried. The block picks its hierarchy itself (automatic).
+constexpr double kNodesPerFaceNode = 2.8, kLeanMemoryShare = 0.9;
 
-double estimated_fem_bytes(const HeightMap& m, int refine) {
+double estimated_fem_bytes(const HeightMap& m, int refine, double memory) {
   const double face = double(m.nx * std::size_t(refine) + 1) * double(m.ny * std::size_t(refine) + 1);
-  return kBytesPerNode * kNodesPerFaceNode * face;
+  const double nodes = kNodesPerFaceNode * face;
+  return fem_memory_estimate(nodes, resolve_amg_hierarchy(AmgHierarchy::automatic, nodes, memory));
 }
 
 }  // namespace
@@ -819,9 +823,9 @@ nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactScene
     ContactScene sc = base;
     sc.model = ContactModel::fem;
     sc.refine = r;
-    const double need = estimated_fem_bytes(surface, r);
+    const double need = estimated_fem_bytes(surface, r, memory);
     nlohmann::json row = {{"refine", r}, {"face_spacing", surface.dx / r}, {"estimated_bytes", need}};
-    if (need > 0.8 * memory) {
+    if (need > kLeanMemoryShare * memory) {
       row["skipped"] = "estimated " + human_bytes(need) + " of " + human_bytes(memory) + " physical memory";
       if (rank == 0) std::fprintf(stderr, "  refine %d skipped: %s\n", r, row["skipped"].get<std::string>().c_str());
       rows.push_back(row);

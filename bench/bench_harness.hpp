@@ -79,8 +79,8 @@ void plot_accuracy(const nlohmann::json& result, const std::string& path);
 // Mesh convergence of the FEM shear test (issue 4, bar 3): `base` (a shear test; its model and
 // refine are set here) run by the FEM on
 // `surface` at each face refinement in `refines` (ascending; spacing = obstacle spacing /
-// refine). A mesh whose estimated memory (about 27 KB per face node, measured at the thesis's
-// scale) exceeds 80 % of physical memory is skipped and says so. Per mesh: nodes, wall time,
+// refine). A mesh whose estimated memory (fem_memory_estimate with the hierarchy the block
+// will pick, lib/fem/amg_hierarchy.hpp) exceeds 90 % of physical memory is skipped and says so. Per mesh: nodes, wall time,
 // converged, A/A0 after the press, the peak mu (peak_friction) with its ux, drift and A/A0.
 // `extrapolations`: over each three successive meshes with one refinement ratio, Richardson's
 // limit, observed order and GCI error (lib/core/richardson.hpp) of mu and both A/A0, or

@@ -44,11 +44,13 @@ struct ContactTestOptions {
   std::string vtu_path;      // write the deformed block of the last step (.vtu), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
   MPI_Comm comm = MPI_COMM_NULL;  // the processes sharing the block (null: PETSC_COMM_WORLD)
+  AmgHierarchy amg = AmgHierarchy::automatic;  // CG's AMG hierarchy (amg_hierarchy.hpp)
 };
 
 struct ContactTestResult {
   std::size_t nodes = 0, dofs = 0, face_nodes = 0, elements = 0, mesh_points = 0;
   int layers = 0, coarsenings = 0;
+  AmgHierarchy amg = AmgHierarchy::standard;  // the hierarchy the block used
   double wall_setup = 0;  // s, mesh and assembly
   std::size_t face_nx = 0, face_ny = 0;  // face nodes per row, rows
   double face_spacing = 0, rms_slope = 0, e_star = 0;

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "lib/contact/adaptive_damping.hpp"
+#include "lib/core/memory_guard.hpp"
 #include "lib/fem/framed_stiffness.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
@@ -28,6 +29,39 @@ void set_default_option(const char* name, const char* value) {
   PetscBool given = PETSC_FALSE;
   PetscOptionsHasName(nullptr, nullptr, name, &given);
   if (!given) PetscOptionsSetValue(nullptr, name, value);
+}
+
+// A solver default that lives as long as this object and is removed after it, unless the user
+// gave it. Why scoped: PETSc's options database is process-wide, and a process may hold blocks
+// of both hierarchies (tests, nested iteration, the mesh-convergence bench).
+class ScopedDefaultOption {
+ public:
+  ScopedDefaultOption(const char* name, const char* value) : name_(name) {
+    PetscBool given = PETSC_FALSE;
+    PetscOptionsHasName(nullptr, nullptr, name, &given);
+    if (!given) set_ = PetscOptionsSetValue(nullptr, name, value) == 0;
+  }
+  ~ScopedDefaultOption() {
+    if (set_) PetscOptionsClearValue(nullptr, name_);
+  }
+  ScopedDefaultOption(const ScopedDefaultOption&) = delete;
+  ScopedDefaultOption& operator=(const ScopedDefaultOption&) = delete;
+
+ private:
+  const char* name_;
+  bool set_ = false;
+};
+
+// The nodes owned by the ranks of `comm` that share this host (the ranks split the nodes about
+// equally: x-slabs with equal shares of the face).
+double nodes_on_this_host(MPI_Comm comm, double nodes) {
+  int ranks = 1, host_ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  MPI_Comm host;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
+  MPI_Comm_size(host, &host_ranks);
+  MPI_Comm_free(&host);
+  return nodes * double(host_ranks) / double(ranks);
 }
 
 // CG's default test (residual below rtol x the right-hand side) plus a least reduction of the
@@ -156,6 +190,7 @@ std::array<double, 9> frame_of(const Vec3& n) {
 struct ElasticBlock::Impl {
   BlockSpec spec;
   MPI_Comm comm = MPI_COMM_NULL;
+  AmgHierarchy amg = AmgHierarchy::standard;  // spec.amg resolved for this mesh and host
   std::unique_ptr<GradedMesh> mesh;
   int rank = 0;
   PetscInt own_begin = 0, own_end = 0;  // owned node ids
@@ -339,7 +374,9 @@ struct ElasticBlock::Impl {
     Vec before_jump = nullptr;  // the iterate before the last slow-mode jump
     std::vector<double> q_all, q_mine;  // constraint frames, 9 per face slot (all face nodes)
     int first_its = -1;                 // CG iterations with a fresh preconditioner
-    LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes);
+    // Lean hierarchy: PtAP all at once (no symbolic scratch), for as long as these systems live.
+    std::unique_ptr<ScopedDefaultOption> ptap_option;
+    LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg);
     ~LinearSystems();
     LinearSystems(const LinearSystems&) = delete;
     LinearSystems& operator=(const LinearSystems&) = delete;
@@ -425,8 +462,12 @@ ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
   impl_->spec = spec;
   impl_->comm = spec.comm == MPI_COMM_NULL ? PETSC_COMM_WORLD : spec.comm;
   impl_->make_grid();
+  impl_->amg = resolve_amg_hierarchy(spec.amg, nodes_on_this_host(impl_->comm, double(impl_->mesh->nodes())),
+                                     double(physical_memory_bytes()));
   impl_->assemble();
 }
+
+AmgHierarchy ElasticBlock::amg_hierarchy() const { return impl_->amg; }
 
 ElasticBlock::~ElasticBlock() {
   if (impl_->face_scatter) VecScatterDestroy(&impl_->face_scatter);
@@ -571,7 +612,7 @@ ElasticBlock::Impl::TopBoundary ElasticBlock::Impl::prescribe_top(const ContactL
   return t;
 }
 
-ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes)
+ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg)
     : q_all(9 * face_nodes), q_mine(q_all.size()) {
   for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) check(VecDuplicate(like, v), "VecDuplicate");
   check(KSPCreate(comm, &ksp), "KSPCreate");
@@ -590,6 +631,15 @@ ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::s
   // refine 2, tol 1e-3: 38 Signorini / 1227 CG iterations / 146 s in the solves against
   // 39 / 1409 / 305 s.
   set_default_option("-mg_levels_ksp_max_it", "1");
+  if (amg == AmgHierarchy::lean) {
+    // Unsmoothed aggregation: the prolongator keeps 6 entries per row and the coarse operators
+    // stay sparse; set through the PC so that -pc_gamg_agg_nsmooths still overrides it.
+    check(PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths");
+    int ranks = 1;
+    MPI_Comm_size(comm, &ranks);
+    // All at once exists for parallel (MPIAIJ) products only; PETSc 3.18 refuses it on one rank.
+    if (ranks > 1) ptap_option = std::make_unique<ScopedDefaultOption>("-matptap_via", "allatonce");
+  }
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
 }
 
@@ -909,7 +959,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   std::vector<FaceNode> face = m.owned_face_nodes();
   if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
   const Impl::TopBoundary top = m.prescribe_top(load);
-  Impl::LinearSystems s(m.comm, m.u, out.face_nodes);
+  Impl::LinearSystems s(m.comm, m.u, out.face_nodes, m.amg);
 
   // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
   // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led

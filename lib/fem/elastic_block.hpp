@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "lib/contact/periodic_obstacle.hpp"
+#include "lib/fem/amg_hierarchy.hpp"
 #include "lib/fem/graded_mesh.hpp"
 
 namespace wr {
@@ -33,6 +34,10 @@ struct BlockSpec {
   // The processes that share the block (PETSC_COMM_WORLD by default; PETSC_COMM_SELF lets
   // every rank solve a block of its own, as independent runs of a sweep do).
   MPI_Comm comm = MPI_COMM_NULL;  // null: PETSC_COMM_WORLD
+  // CG's AMG hierarchy (amg_hierarchy.hpp); automatic: lean only where the standard one would
+  // not fit in this host's memory. PETSc options given by the user (-pc_gamg_agg_nsmooths,
+  // -matptap_via) win over either.
+  AmgHierarchy amg = AmgHierarchy::automatic;
 };
 
 enum class TopCondition { fixed, frictionless };  // top face: all components prescribed, or only z
@@ -126,6 +131,7 @@ class ElasticBlock {
   // resolves it, and the Signorini iteration of the fine mesh is left the short-waved rest.
   void add_lifted_face_field(const std::vector<double>& field, int fnx, int fny);
   std::size_t nodes() const;  // independent nodes
+  AmgHierarchy amg_hierarchy() const;  // the one in use: standard or lean, never automatic
   const GradedMesh& mesh() const;
   std::size_t dofs() const { return 3 * nodes(); }
 
