@@ -13,13 +13,13 @@ REFINE=${3:-2}
 AMG=${4:-auto}
 ITERATIONS=${5:-2}
 mkdir -p "$W"
-export OMP_NUM_THREADS=1
-MPIRUN="mpirun -np 2"
-[ "$(id -u)" -eq 0 ] && MPIRUN="mpirun --allow-run-as-root -np 2"
-[ -f "$W/A_3.05e-4.h5" ] ||
-  "$BIN" synth --size 300 --dx 1e-4 --h0 3.05e-4 --hurst 0.7 --q0-ratio 5 --seed 1 -o "$W/A_3.05e-4.h5" -q
+# shellcheck source=scripts/fem-bench-env.sh
+. "$(dirname "$0")/fem-bench-env.sh"
+dataset_a_surface "$BIN" "$W"
 TAG="r${REFINE}_$AMG"
 # The step ends unconverged after ITERATIONS (exit 3, by design); the json keeps the mesh.
+# $MPIRUN splits into words on purpose.
+# shellcheck disable=SC2086
 /usr/bin/time -o "$W/$TAG.time" -f "%M %e" $MPIRUN "$BIN" contact --surface "$W/A_3.05e-4.h5" --problem normal \
   --uz 4.5e-3 --steps 1 --refine "$REFINE" --tol 1e-3 --max-iterations "$ITERATIONS" --amg "$AMG" --trace \
   --json "$W/$TAG.json" > "$W/$TAG.log" 2>&1 || true

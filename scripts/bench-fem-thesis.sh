@@ -13,11 +13,9 @@ UX=${3:-3e-3}
 SHEAR_STEPS=${4:-3}
 TOL=${5:-1e-3}
 mkdir -p "$W"
-export OMP_NUM_THREADS=1
-MPIRUN="mpirun -np 2"
-[ "$(id -u)" -eq 0 ] && MPIRUN="mpirun --allow-run-as-root -np 2"
-[ -f "$W/A_3.05e-4.h5" ] ||
-  "$BIN" synth --size 300 --dx 1e-4 --h0 3.05e-4 --hurst 0.7 --q0-ratio 5 --seed 1 -o "$W/A_3.05e-4.h5" -q
+# shellcheck source=scripts/fem-bench-env.sh
+. "$(dirname "$0")/fem-bench-env.sh"
+dataset_a_surface "$BIN" "$W"
 PROBLEM="--problem shear --ux $UX --shear-steps $SHEAR_STEPS"
 [ "$SHEAR_STEPS" -eq 0 ] && PROBLEM="--problem normal"
 # shellcheck disable=SC2086

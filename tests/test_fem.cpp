@@ -20,6 +20,17 @@
 namespace wr {
 namespace {
 
+// The top pushed down kFlatPress (frictionless) onto a flat obstacle, solved to round-off.
+constexpr double kFlatPress = 1e-4;  // m
+ContactSolution press_on_flat(ElasticBlock& block) {
+  ContactLoad load;
+  load.uz = kFlatPress;
+  load.top = TopCondition::frictionless;
+  load.ksp_rtol = 1e-13;
+  load.tolerance = 1e-12;
+  return block.solve(load);
+}
+
 // A flat obstacle and a frictionless top: uniaxial compression, Fz = E A dz / Lz exactly
 // (trilinear elements and the hanging-node interpolation represent the uniform strain
 // state), whatever the grading: none, or in-plane doublings every layer or every 2 layers.
@@ -37,17 +48,12 @@ TEST(Fem, UniaxialCompressionOnAFlatObstacle) {
     b.young = 3.0e6;
     b.poisson = 0.45;
     ElasticBlock block(b);
-    ContactLoad load;
-    load.uz = 1e-4;
-    load.top = TopCondition::frictionless;
-    load.ksp_rtol = 1e-13;
-    load.tolerance = 1e-12;
-    const ContactSolution s = block.solve(load);
+    const ContactSolution s = press_on_flat(block);
     ASSERT_TRUE(s.converged) << s.message;
     if (layers > 0) {
       EXPECT_GE(block.mesh().coarsenings(), 2);
     }
-    const double expected = b.young * b.mesh.lx * b.mesh.ly * load.uz / b.mesh.lz;
+    const double expected = b.young * b.mesh.lx * b.mesh.ly * kFlatPress / b.mesh.lz;
     EXPECT_NEAR(s.fz / expected, 1.0, 1e-8) << "layers " << layers;
     EXPECT_NEAR(s.fx / expected, 0.0, 1e-8);
     EXPECT_EQ(s.contact_nodes, s.face_nodes);
@@ -132,14 +138,9 @@ TEST(Fem, LeanAmgHierarchyReachesTheSameContactState) {
   b.mesh.min_cells = 2;
   b.amg = AmgHierarchy::lean;
   ElasticBlock block(b);
-  ContactLoad load;
-  load.uz = 1e-4;
-  load.top = TopCondition::frictionless;
-  load.ksp_rtol = 1e-13;
-  load.tolerance = 1e-12;
-  const ContactSolution s = block.solve(load);
+  const ContactSolution s = press_on_flat(block);
   ASSERT_TRUE(s.converged) << s.message;
-  const double expected = b.young * b.mesh.lx * b.mesh.ly * load.uz / b.mesh.lz;
+  const double expected = b.young * b.mesh.lx * b.mesh.ly * kFlatPress / b.mesh.lz;
   EXPECT_NEAR(s.fz / expected, 1.0, 1e-8);
 }
 
