@@ -4,7 +4,8 @@
 # Problem A (uz 9 mm in 2 steps) then Problem B (ux in shear steps) on 2 ranks; wall time and
 # peak memory per rank from /usr/bin/time, per-step times and forces from --json.
 # Usage: scripts/bench-fem-thesis.sh [WETROAD] [WORKDIR] [UX_M] [SHEAR_STEPS] [TOL]
-# SHEAR_STEPS 0: Problem A alone.
+# SHEAR_STEPS 0: Problem A alone. FEM_OPTS (environment): more contact options, e.g.
+# FEM_OPTS="--damping 1.0".
 # Long: tens of minutes on 2 cores. Not part of make test.
 set -eu
 BIN=${1:-build/bin/wetroad}
@@ -21,7 +22,7 @@ PROBLEM="--problem shear --ux $UX --shear-steps $SHEAR_STEPS"
 # shellcheck disable=SC2086
 /usr/bin/time -f "wall %e s, peak memory per rank %M KB" $MPIRUN "$BIN" contact --surface "$W/A_3.05e-4.h5" \
   $PROBLEM --uz 9e-3 --steps 2 --refine 2 --tol "$TOL" \
-  --json "$W/shear.json" 2>&1 | tee "$W/shear.log"
+  --json "$W/shear.json" ${FEM_OPTS:-} 2>&1 | tee "$W/shear.log"
 python3 - "$W/shear.json" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))

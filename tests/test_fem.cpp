@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "lib/analytic/hertz.hpp"
 #include "lib/core/errors.hpp"
@@ -268,6 +270,78 @@ TEST(Fem, SlowModeExtrapolationReachesTheSameFixedPointSooner) {
   EXPECT_LT(err_plain, 1e-8);
   EXPECT_LT(err_fast, 1e-8);
   EXPECT_LT(fast, plain / 3) << "plain " << plain << ", extrapolated " << fast;
+}
+
+// jump_overshot on the same kind of damped map, u <- u + alpha (T(u) - u), once with a pure
+// geometric creep (T = M u + b: Aitken's jump is exact up to the fast modes, so the correction
+// after it is no larger than before) and once with a creep that a wall stops short of the
+// series' limit (the slow coordinate's target capped at a fifth of it, as a face node meets a
+// flank): the jump lands far past the wall, the correction after it is many times the one
+// before, and the jump must be judged overshot. Undoing it (as the FEM's Signorini loop does)
+// and going on must still reach the wall's fixed point.
+TEST(Fem, JumpOvershotTellsAGeometricCreepFromOneAWallStops) {
+  const PetscInt n = 40;
+  const double alpha = 0.8;
+  const auto eigen = [](PetscInt i) { return i == 0 ? 0.99 : 0.5 / double(1 + i % 5); };
+  const auto rhs = [](PetscInt i) { return 1.0 + 0.1 * double(i); };
+  const double wall = 0.2 * rhs(0) / (1 - eigen(0));
+  // Runs the map with jumps every 5 iterations; returns the ratio (change after / before) of
+  // the first jump and whether the iteration converged (to 1e-8) with overshot jumps undone.
+  const auto run = [&](bool walled, double* first_ratio, int* undone) {
+    Vec u, before_jump;
+    VecCreateSeq(PETSC_COMM_SELF, n, &u);
+    VecDuplicate(u, &before_jump);
+    VecSet(u, 0.0);
+    SlowModeExtrapolation x(u, 5);
+    *first_ratio = 0;
+    *undone = 0;
+    double change_at_jump = 0;
+    bool converged = false;
+    for (int k = 0; k < 5000 && !converged; ++k) {
+      PetscScalar* a;
+      VecGetArray(u, &a);
+      double c2 = 0, t2 = 0, err = 0;
+      std::vector<double> target(n);
+      for (PetscInt i = 0; i < n; ++i) {
+        target[i] = eigen(i) * a[i] + rhs(i);
+        if (walled && i == 0) target[i] = std::min(target[i], wall);
+        c2 += (target[i] - a[i]) * (target[i] - a[i]);
+        t2 += target[i] * target[i];
+      }
+      const double change = std::sqrt(c2 / t2);
+      VecRestoreArray(u, &a);
+      if (const double before = std::exchange(change_at_jump, 0.0); before > 0) {
+        if (*first_ratio == 0) *first_ratio = change / before;
+        if (jump_overshot(change, before)) {
+          VecCopy(before_jump, u);
+          x.restart(u);
+          ++*undone;
+          continue;
+        }
+      }
+      VecGetArray(u, &a);
+      for (PetscInt i = 0; i < n; ++i) {
+        a[i] += alpha * (target[i] - a[i]);
+        const double fixed = walled && i == 0 ? wall : rhs(i) / (1 - eigen(i));
+        err = std::max(err, std::abs(a[i] - fixed));
+      }
+      VecRestoreArray(u, &a);
+      converged = err < 1e-8;
+      if (!converged && x.after_iteration(u, before_jump) > 0) change_at_jump = change;
+    }
+    VecDestroy(&u);
+    VecDestroy(&before_jump);
+    return converged;
+  };
+  double ratio_free = 0, ratio_walled = 0;
+  int undone_free = 0, undone_walled = 0;
+  EXPECT_TRUE(run(false, &ratio_free, &undone_free));
+  EXPECT_TRUE(run(true, &ratio_walled, &undone_walled));
+  EXPECT_GT(ratio_free, 0.0) << "no jump taken";
+  EXPECT_FALSE(jump_overshot(ratio_free, 1.0)) << "geometric creep: ratio " << ratio_free;
+  EXPECT_EQ(undone_free, 0);
+  EXPECT_TRUE(jump_overshot(ratio_walled, 1.0)) << "walled creep: ratio " << ratio_walled;
+  EXPECT_GT(undone_walled, 0);
 }
 
 // The face-mode jump on modal coordinates that approach their limit geometrically (ratio 0.9

@@ -979,7 +979,9 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   // 300 x 300 scenes), while jumps that overshot into the fast modes opened it (300 x 300:
   // 98k -> 78k and 197k -> 133k nodes, each followed by many iterations of recovery).
   constexpr double kMaxContactLoss = 0.1;
+  // A jump is also undone when the correction after it shows it overshot (jump_overshot).
   std::size_t contact_before_jump = 0;  // > 0: the last iteration jumped
+  double change_before_jump = 0;        // > 0: the last iteration jumped, at this change
   int penetration_retries = 0;
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
   AdaptiveDamping damping(load.damping);
@@ -1044,6 +1046,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       extrapolation.restart(m.u);
       if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));
       ++out.rejected_jumps;
+      change_before_jump = 0;
       if (load.trace && m.rank == 0)
         std::fprintf(stderr, "    slow-mode jump undone: %zu of %zu contact nodes left\n", out.contact_nodes,
                      contact_then);
@@ -1064,6 +1067,16 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     m.stiffness->rotate_vector(s.ustar, s.q_all, false);
     const Impl::Correction corr = m.measure_correction(face, s.ustar, prev_corr);
     const double change = corr.change;
+    if (const double before = std::exchange(change_before_jump, 0.0);
+        jump_overshot(change, before)) {
+      check(VecCopy(s.before_jump, m.u), "VecCopy");
+      extrapolation.restart(m.u);
+      if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));
+      ++out.rejected_jumps;
+      if (load.trace && m.rank == 0)
+        std::fprintf(stderr, "    slow-mode jump undone: change %.2e after it, %.2e before\n", change, before);
+      continue;  // re-linearise where the jump started
+    }
     if (load.follow_geometry) damping.after_correction(corr.cosine);
     out.history.push_back(change);
     smallest_change = std::min(smallest_change, change);
@@ -1076,11 +1089,14 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     const double trace_fx = forces[0], trace_fz = forces[2];
     out.mu_history.push_back(trace_fz > 0 ? trace_fx / trace_fz : 0.0);
     out.damping_history.push_back(alpha);
+    // The deepest node of the new iterate (vertical depth below the obstacle), collective: only
+    // when tracing, since it is one more pass over the face.
+    const double trace_pen = load.trace && load.obstacle ? m.deepest_penetration(face, m.u, load) : 0.0;
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
-                   "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  [%.1f s]\n",
+                   "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  pen %.2e  [%.1f s]\n",
                    outer + 1, change, alpha, out.contact_nodes, as.settled ? "" : "+", out.active_set_iterations,
-                   out.linear_iterations, rtol, trace_fz, trace_fx, MPI_Wtime() - t_solve_start);
+                   out.linear_iterations, rtol, trace_fz, trace_fx, trace_pen, MPI_Wtime() - t_solve_start);
     if (!load.trace && load.progress_every_s > 0 && m.rank == 0 &&
         MPI_Wtime() - last_progress >= load.progress_every_s) {
       last_progress = MPI_Wtime();
@@ -1093,6 +1109,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     // of Algorithm 1, with its confirmations.
     if (const double jump = extrapolation.after_iteration(m.u, s.before_jump); jump > 0) {
       contact_before_jump = out.contact_nodes;
+      change_before_jump = change;
       out.extrapolations = extrapolation.jumps() + face_extrapolation.jumps();
       if (load.trace && m.rank == 0) std::fprintf(stderr, "    slow-mode extrapolation: factor %.2f\n", jump);
       if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));

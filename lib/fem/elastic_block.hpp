@@ -93,7 +93,7 @@ struct ContactSolution {
   int linear_iterations = 0;      // CG iterations, summed
   int preconditioner_rebuilds = 0;  // AMG hierarchies rebuilt after a failed solve with a kept one
   int extrapolations = 0;           // slow-mode jumps taken (slow_mode_extrapolation.hpp)
-  int rejected_jumps = 0;           // of them, undone: the contact set collapsed after the jump
+  int rejected_jumps = 0;           // of them, undone: the contact set collapsed or the next change grew (jump_overshot)
   bool converged = false;
   std::string message;
   std::vector<double> history;    // relative change of the face displacement per outer iteration
