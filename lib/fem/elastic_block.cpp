@@ -987,6 +987,15 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   AdaptiveDamping damping(load.damping);
   std::vector<double> normal_force(face.size(), 0.0);  // N, per face node, last linearisation
   std::vector<double> prev_corr(3 * face.size(), 0.0);
+  // Back to the iterate before the last jump; both extrapolations measure afresh from there.
+  const auto undo_jump = [&] {
+    check(VecCopy(s.before_jump, m.u), "VecCopy");
+    extrapolation.restart(m.u);
+    if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));
+    ++out.rejected_jumps;
+    contact_before_jump = 0;
+    change_before_jump = 0;
+  };
   bool final_pass = false;
   double loose_factor = 0.01;  // CG rtol of a loose solve = loose_factor x smallest_change
   double smallest_change = INFINITY;  // of this step's Signorini iterations so far
@@ -1042,11 +1051,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     out.wall_solve += MPI_Wtime() - t_phase;
     const std::size_t contact_then = std::exchange(contact_before_jump, 0);
     if (contact_then > 0 && double(out.contact_nodes) < (1 - kMaxContactLoss) * double(contact_then)) {
-      check(VecCopy(s.before_jump, m.u), "VecCopy");
-      extrapolation.restart(m.u);
-      if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));
-      ++out.rejected_jumps;
-      change_before_jump = 0;
+      undo_jump();
       if (load.trace && m.rank == 0)
         std::fprintf(stderr, "    slow-mode jump undone: %zu of %zu contact nodes left\n", out.contact_nodes,
                      contact_then);
@@ -1069,10 +1074,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     const double change = corr.change;
     if (const double before = std::exchange(change_before_jump, 0.0);
         jump_overshot(change, before)) {
-      check(VecCopy(s.before_jump, m.u), "VecCopy");
-      extrapolation.restart(m.u);
-      if (modes_on) face_extrapolation.restart(m.face_mode_coordinates(face, basis));
-      ++out.rejected_jumps;
+      undo_jump();
       if (load.trace && m.rank == 0)
         std::fprintf(stderr, "    slow-mode jump undone: change %.2e after it, %.2e before\n", change, before);
       continue;  // re-linearise where the jump started
