@@ -1091,14 +1091,15 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     const double trace_fx = forces[0], trace_fz = forces[2];
     out.mu_history.push_back(trace_fz > 0 ? trace_fx / trace_fz : 0.0);
     out.damping_history.push_back(alpha);
-    // The deepest node of the new iterate (vertical depth below the obstacle), collective: only
-    // when tracing, since it is one more pass over the face.
+    // The deepest node of the new iterate and of the linearised solution u* (vertical depth
+    // below the obstacle), collective: only when tracing, since each is one more pass over the face.
     const double trace_pen = load.trace && load.obstacle ? m.deepest_penetration(face, m.u, load) : 0.0;
+    const double trace_pen_star = load.trace && load.obstacle ? m.deepest_penetration(face, s.ustar, load) : 0.0;
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
-                   "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  pen %.2e  [%.1f s]\n",
+                   "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  pen %.2e  pen* %.2e  [%.1f s]\n",
                    outer + 1, change, alpha, out.contact_nodes, as.settled ? "" : "+", out.active_set_iterations,
-                   out.linear_iterations, rtol, trace_fz, trace_fx, trace_pen, MPI_Wtime() - t_solve_start);
+                   out.linear_iterations, rtol, trace_fz, trace_fx, trace_pen, trace_pen_star, MPI_Wtime() - t_solve_start);
     if (!load.trace && load.progress_every_s > 0 && m.rank == 0 &&
         MPI_Wtime() - last_progress >= load.progress_every_s) {
       last_progress = MPI_Wtime();
