@@ -5,19 +5,15 @@
 # hence the tight --tol and --ksp-rtol (at the default --tol 1e-3 mu differs by ~1e-4). The
 # speedup is measured by hand (scripts/bench-fem-mpi.sh, README).
 # Usage: contact_mpi.sh WETROAD MPIEXEC WORKDIR
-set -eu
-BIN=$1
-MPIEXEC=$2
-W=$3
-rm -rf "$W" && mkdir -p "$W"
-export OMP_NUM_THREADS=1
+# shellcheck source=tests/mpi-test-env.sh
+. "$(dirname "$0")/mpi-test-env.sh"
 "$BIN" synth --scene default --size 32 --dx 9.375e-4 -o "$W/s.h5" -q
 CONTACT="contact --surface $W/s.h5 --problem shear --uz 1.5e-3 --ux 3e-3 --steps 2 --shear-steps 3
   --refine 1 --tol 1e-9 --ksp-rtol 1e-12 --max-iterations 1000"
 # shellcheck disable=SC2086
 "$BIN" $CONTACT --json "$W/one.json" >"$W/one.log" 2>&1 || { cat "$W/one.log"; exit 1; }
 # shellcheck disable=SC2086
-"$MPIEXEC" --allow-run-as-root --oversubscribe -np 2 "$BIN" $CONTACT --json "$W/two.json" >"$W/two.log" 2>&1 ||
+on_two_ranks $CONTACT --json "$W/two.json" >"$W/two.log" 2>&1 ||
   { cat "$W/two.log"; exit 1; }
 grep -q '"ranks": 2' "$W/two.json" || { echo "FAIL: the 2-rank run did not run on 2 ranks"; exit 1; }
 # Every "mu" and "area_fraction" of the two records, in document order (the peak, then each step).
