@@ -582,7 +582,7 @@ Command add_contact(CLI::App& root) {
   s->add_option("--facet-band", c->opt.facet_band,
                 "with --facet-normals: blend into the smooth normal within this barycentric band of the "
                 "triangle edges (0 ... 1; 0: pure facet normals)");
-  s->add_flag("--trace", c->opt.trace, "print every Signorini iteration (change, contact nodes, iterations, time)");
+  s->add_flag("--trace", c->opt.trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time)");
   return {s, [c] { return run_contact(*c); }};
 }
 

@@ -20,10 +20,8 @@ mkdir -p "$W"
 . "$(dirname "$0")/fem-bench-env.sh"
 S="$W/s$SIZE.h5"
 [ -f "$S" ] || "$BIN" synth --size "$SIZE" --dx 1e-4 --h0 1e-4 --hurst 0.7 --q0-ratio 5 --seed 5 -o "$S" -q
-ONE=$(echo "$MPIRUN" | sed 's/-np 2/-np 1/')
 for n in 1 2; do
-  launch=$MPIRUN
-  [ "$n" -eq 1 ] && launch=$ONE
+  launch="$MPILAUNCH -np $n"
   echo "== $n rank(s): $launch wetroad contact --surface $S --problem normal --uz 1.5e-3 --steps 1 --refine $REFINE --tol $TOL"
   # shellcheck disable=SC2086
   /usr/bin/time -f "process wall %e s, peak memory per rank %M KB" -o "$W/time$n.txt" $launch "$BIN" contact \

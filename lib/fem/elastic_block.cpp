@@ -1093,8 +1093,9 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     out.damping_history.push_back(alpha);
     // The deepest node of the new iterate and of the linearised solution u* (vertical depth
     // below the obstacle), collective: only when tracing, since each is one more pass over the face.
-    const double trace_pen = load.trace && load.obstacle ? m.deepest_penetration(face, m.u, load) : 0.0;
-    const double trace_pen_star = load.trace && load.obstacle ? m.deepest_penetration(face, s.ustar, load) : 0.0;
+    const bool trace_depths = load.trace && load.obstacle;
+    const double trace_pen = trace_depths ? m.deepest_penetration(face, m.u, load) : 0.0;
+    const double trace_pen_star = trace_depths ? m.deepest_penetration(face, s.ustar, load) : 0.0;
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
                    "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  pen %.2e  pen* %.2e  [%.1f s]\n",
