@@ -222,8 +222,9 @@ TEST(Fem, PenetrationLimitKeepsALooseIterationGoing) {
   const ContactSolution a = loose.solve(load);
   ASSERT_TRUE(a.converged) << a.message;
   ASSERT_GT(a.max_penetration, 0.0);
-  // The reported deepest node is where the obstacle is that much above the deformed face.
-  EXPECT_NEAR(ob.height(a.deepest_at.x, a.deepest_at.y) - a.deepest_at.z, a.max_penetration, 1e-15);
+  // The reported deepest node is that far inside the obstacle, perpendicular to the facet over it.
+  const double vertical = ob.height(a.deepest_at.x, a.deepest_at.y) - a.deepest_at.z;
+  EXPECT_NEAR(vertical * ob.normal(a.deepest_at.x, a.deepest_at.y).z, a.max_penetration, 1e-15);
   EXPECT_EQ(a.nodes_over_penetration, 0u);  // no limit given, nothing counted
   load.max_penetration = 0.5 * a.max_penetration;
   ElasticBlock limited(b);

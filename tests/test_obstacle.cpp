@@ -97,6 +97,51 @@ TEST(Obstacle, ObliqueRaysFindTheFirstCrossingAcrossSeams) {
   EXPECT_EQ(tested, 300);
 }
 
+// The gap is where the line through a point enters the obstacle: ahead of a point outside,
+// behind a point inside, even when the other way meets the surface sooner. Scene: a periodic V
+// valley of slope 3 across x (bottom at x = 1 mm, peaks at 0 and 2 mm), a ray down and +x at
+// 45 degrees. From a point 10 um above the left flank the line meets that flank 5 um behind
+// (an exit: that plane would hold the point off an asperity it is not pressing on) and enters
+// the right flank ahead; from a point 10 um inside the left flank it leaves it 5 um ahead and
+// came in over the peak behind. Checked against a fine march along the line.
+TEST(Obstacle, GapIsTheEntryCrossingOnTheSideThePointIsOn) {
+  const double dx = 1e-4;
+  HeightMap m(20, 4, dx, dx);
+  for (std::size_t j = 0; j < 4; ++j)
+    for (std::size_t i = 0; i < 20; ++i) m(i, j) = 3.0 * std::abs(double(i) - 10.0) * dx;
+  const PeriodicObstacle o(m);
+  const Vec3 d = Vec3{1, 0, -1}.unit();
+  // First t (step 1e-8 m, either sign of `dir`) where z - h changes sign from p's side.
+  const auto march = [&](const Vec3& p, double dir) {
+    const bool outside = p.z > o.height(p.x, p.y);
+    double t = 0;
+    for (;;) {
+      const Vec3 q = p + d * t;
+      if ((q.z > o.height(q.x, q.y)) != outside) return t;
+      t += dir * 1e-8;
+    }
+  };
+  const Vec3 above{0.8e-3, 1.5e-4, 0.6e-3 + 1e-5}, inside{0.8e-3, 1.5e-4, 0.6e-3 - 1e-5};
+  EXPECT_NEAR(march(above, -1), -5e-6 * std::sqrt(2.0), 2e-8);  // the nearer crossing, behind
+  const auto a = o.cast(above, d, 0.05);
+  ASSERT_TRUE(a);
+  EXPECT_GT(a->t, 0);
+  EXPECT_NEAR(a->t, march(above, +1), 2e-8);
+  EXPECT_GT(a->point.x, 1e-3);  // on the right flank
+  EXPECT_NEAR(a->point.z, o.height(a->point.x, a->point.y), 1e-15);
+
+  EXPECT_NEAR(march(inside, +1), 5e-6 * std::sqrt(2.0), 2e-8);  // the nearer crossing, ahead
+  const auto b = o.cast(inside, d, 0.05);
+  ASSERT_TRUE(b);
+  EXPECT_LT(b->t, 0);
+  EXPECT_NEAR(b->t, march(inside, -1), 2e-8);
+  EXPECT_NEAR(b->point.z, o.height(b->point.x, b->point.y), 1e-15);
+  // Inside, a downward line always finds its way out, however short the search asked for.
+  const auto c = o.cast(inside, d, 1e-9);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->t, b->t, 1e-15);
+}
+
 TEST(Obstacle, FarObstacleIsNotFound) {
   const HeightMap m = random_map(8, 8, 2, 1e-5);
   const PeriodicObstacle o(m);

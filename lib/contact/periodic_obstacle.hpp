@@ -44,9 +44,12 @@ class PeriodicObstacle {
   // Angle-weighted normal at lattice vertex (i, j).
   Vec3 vertex_normal(long i, long j) const;
 
-  // The intersection nearest to p along the line p + t d (d need not be unit; t is reported
-  // in units of |d|), searching ahead and behind up to |t| <= max_distance. None if the line
-  // meets the surface nowhere within that distance.
+  // Where the line p + t d enters the obstacle (going along d from free space into it) nearest
+  // to p; d need not be unit, t is reported in units of |d|. For p outside (above the surface)
+  // that is the first crossing ahead, t in [0, max_distance]; none if there is none within it.
+  // For p inside (below the surface) it is the first crossing behind, t < 0 (the signed gap of
+  // a penetrating point), within max_distance; when d points down (d.z < 0) it is always
+  // found, the line being out above the highest point at the latest.
   std::optional<RayHit> cast(const Vec3& p, const Vec3& d, double max_distance) const;
 
  private:

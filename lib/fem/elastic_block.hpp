@@ -85,7 +85,7 @@ struct ContactSolution {
   double fz = 0, fx = 0, fy = 0;  // N, reaction on the top face (fz > 0 in compression)
   std::size_t contact_nodes = 0, face_nodes = 0;
   double mean_separation = 0;     // m, mean vertical gap between the deformed face and the obstacle
-  double max_penetration = 0;     // m, worst depth of a face node below the obstacle
+  double max_penetration = 0;     // m, worst depth of a face node inside the obstacle, perpendicular to the facet above it
   Vec3 deepest_at;                // m, deformed position of that node (when max_penetration > 0)
   std::size_t nodes_over_penetration = 0;  // face nodes deeper than ContactLoad::max_penetration (if > 0)
   int outer_iterations = 0;       // Signorini (geometry) iterations
