@@ -682,6 +682,12 @@ void ElasticBlock::Impl::linearise(std::vector<FaceNode>& face, const ContactLoa
     // slope 1.8 at 30 % compression: face normals up to 80 degrees from vertical, some
     // pointing up); there the vertical stands in.
     if (n.z > -kMinRayCosine) n = {0, 0, -1};
+    // A node inside the obstacle is held to the tangent plane where its ray's line comes out.
+    // Along a tilted ray that plane can leave the node inside it (the ray glancing a flank
+    // whose normal is more than 90 degrees from -n): a fixed point of Algorithm 1 with the
+    // node still in. Along the vertical the plane always cuts the node off, and the step
+    // it asks for, (h - z) n_z, is the penetration face_gaps measures.
+    if (here.z < load.obstacle->height(here.x, here.y)) n = {0, 0, -1};
     const auto hit = load.obstacle->cast(here, n, reach);
     if (!hit) {
       f.normal = {0, 0, 1};
