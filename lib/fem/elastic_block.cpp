@@ -15,6 +15,7 @@
 #include "lib/core/memory_guard.hpp"
 #include "lib/fem/framed_stiffness.hpp"
 #include "lib/fem/petsc_session.hpp"
+#include "lib/fem/penetration_retries.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/io/vtu_writer.hpp"
 
@@ -989,7 +990,6 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   FaceModeExtrapolation face_extrapolation(modes_on ? load.extrapolate_every : 0);
   const FaceModeBasis basis(*m.mesh, m.spec.mesh.lx, m.spec.mesh.ly, m.face_nx(), m.face_ny(), modes_on);
 
-  constexpr int kPenetrationRetries = 3;
   constexpr double kLeastReduction = 0.1;  // of a loose linearisation's first CG residual
   // A slow-mode jump is undone when the linearisation at the jumped iterate loses more than
   // this fraction of the contact nodes. Why: the creep moves the face along the obstacle and
@@ -1000,7 +1000,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   // A jump is also undone when the correction after it shows it overshot (jump_overshot).
   std::size_t contact_before_jump = 0;  // > 0: the last iteration jumped
   double change_before_jump = 0;        // > 0: the last iteration jumped, at this change
-  int penetration_retries = 0;
+  PenetrationRetries penetration_retries;
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
   AdaptiveDamping damping(load.damping);
   std::vector<double> normal_force(face.size(), 0.0);  // N, per face node, last linearisation
@@ -1161,15 +1161,19 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       final_pass = true;  // converged on loose solves: confirm with one full solve at ksp_rtol
       continue;
     }
-    if (load.follow_geometry && step_change <= load.tolerance && load.max_penetration > 0 &&
-        penetration_retries < kPenetrationRetries &&
-        m.deepest_penetration(face, damping.capped() ? m.u : s.ustar, load) > load.max_penetration) {
+    if (load.follow_geometry && step_change <= load.tolerance && load.max_penetration > 0) {
       // Small change, yet a node is inside the obstacle: the tolerance has not seen all that is
-      // left (e.g. after a slow-mode jump). Go on, with ten times tighter loose solves.
-      ++penetration_retries;
-      final_pass = false;
-      loose_factor *= 0.1;
-      continue;
+      // left (e.g. after a slow-mode jump, or while the capped damping averages a chatter out).
+      // Go on, with ten times tighter loose solves, while the node keeps coming out.
+      const double depth = m.deepest_penetration(face, damping.capped() ? m.u : s.ustar, load);
+      if (depth > load.max_penetration && penetration_retries.retry(depth)) {
+        if (load.trace && m.rank == 0)
+          std::fprintf(stderr, "    penetration retry %d: deepest node %.2e m (limit %.2e m)\n",
+                       penetration_retries.count(), depth, load.max_penetration);
+        final_pass = false;
+        loose_factor *= 0.1;
+        continue;
+      }
     }
     if (!load.follow_geometry || step_change <= load.tolerance) {
       // The undamped solution of the last linearisation; after a stagnation the averaged
