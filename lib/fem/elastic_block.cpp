@@ -1001,6 +1001,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   std::size_t contact_before_jump = 0;  // > 0: the last iteration jumped
   double change_before_jump = 0;        // > 0: the last iteration jumped, at this change
   PenetrationRetries penetration_retries;
+  bool retrying = false;  // the last iteration passed the change test and went on for a node too deep
   const int outer_max = load.follow_geometry ? load.max_outer_iterations : 1;
   AdaptiveDamping damping(load.damping);
   std::vector<double> normal_force(face.size(), 0.0);  // N, per face node, last linearisation
@@ -1161,12 +1162,14 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       final_pass = true;  // converged on loose solves: confirm with one full solve at ksp_rtol
       continue;
     }
+    retrying = false;
     if (load.follow_geometry && step_change <= load.tolerance && load.max_penetration > 0) {
       // Small change, yet a node is inside the obstacle: the tolerance has not seen all that is
       // left (e.g. after a slow-mode jump, or while the capped damping averages a chatter out).
       // Go on, with ten times tighter loose solves, while the node keeps coming out.
       const double depth = m.deepest_penetration(face, damping.capped() ? m.u : s.ustar, load);
-      if (depth > load.max_penetration && penetration_retries.retry(depth)) {
+      retrying = depth > load.max_penetration;
+      if (retrying && penetration_retries.retry(depth)) {
         if (load.trace && m.rank == 0)
           std::fprintf(stderr, "    penetration retry %d: deepest node %.2e m (limit %.2e m)\n",
                        penetration_retries.count(), depth, load.max_penetration);
@@ -1182,6 +1185,12 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       out.converged = true;
       break;
     }
+  }
+  // The cap ended the retries: the change test was met, so the step ends as converged by it and
+  // the penetration check (the caller's) names the node that is still too deep.
+  if (!out.converged && retrying && out.message.empty()) {
+    if (!damping.capped()) check(VecCopy(s.ustar, m.u), "VecCopy");
+    out.converged = true;
   }
   if (!out.converged && out.message.empty())
     out.message = "Signorini iteration did not converge in " + std::to_string(load.max_outer_iterations) +
