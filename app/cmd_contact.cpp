@@ -140,7 +140,8 @@ nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool ta
 const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<ContactStep>& steps, bool talk,
                                        const HeightMap& obstacle) {
   const ContactStep* peak = peak_friction(steps);
-  if (peak) j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - steps.data()) + 1}};
+  if (peak)
+    j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - steps.data()) + 1}, {"reached", peak_reached(steps)}};
   const double central = rms_slope_finite_difference(obstacle, 0, SlopeStencil::central);
   j["rms_slope_central"] = central;
   j["area_load_fit"] = area_load_fit_json(steps, talk, central / j["rms_slope"].get<double>());
@@ -148,9 +149,14 @@ const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<Cont
 }
 
 void print_peak(const ContactStep* peak, const std::vector<ContactStep>& steps) {
-  if (peak)
+  if (!peak) return;
+  if (peak_reached(steps))
     std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
                 peak->ux, int(peak - steps.data()) + 1);
+  else
+    std::printf("  static friction: mu >= %.4g; mu still rises at the last shear step (ux = %.4g m, step %d), so the "
+                "peak lies beyond it: shear further (--ux)\n",
+                peak->mu, peak->ux, int(peak - steps.data()) + 1);
 }
 
 void print_step_header() {

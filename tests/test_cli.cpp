@@ -224,6 +224,7 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   ASSERT_TRUE(js.contains("peak"));  // one shear step: it is the peak
   EXPECT_EQ(js["peak"]["step"].get<int>(), 2);
   EXPECT_DOUBLE_EQ(js["peak"]["mu"].get<double>(), js["steps"][1]["mu"].get<double>());
+  EXPECT_FALSE(js["peak"]["reached"].get<bool>());  // nothing after it: a lower bound only
   // Whether mu settled is measured and judged: the shear step's drift and mu per Signorini
   // iteration, and the "friction converged" check beside the others.
   EXPECT_TRUE(js["steps"][1]["mu_drift"].is_number());

@@ -239,6 +239,36 @@ TEST(Fem, PenetrationLimitKeepsALooseIterationGoing) {
 // The retries go on while the deepest node keeps coming out and stop after kPatience retries
 // without progress. The first sequence is the 300 x 300 Problem A step 2 that failed at
 // 3.31e-5 m under the old rule of three retries (penetration_retries.hpp).
+// The static friction is the peak of the shear curve only once the curve has turned over; a
+// curve still rising at its last converged step gives a lower bound (peak_reached false).
+TEST(ContactCurve, PeakIsReachedOnlyWhenALaterShearStepFalls) {
+  const auto curve = [](std::vector<double> mus, int failed_from = 1 << 20) {
+    std::vector<ContactStep> steps(1);  // the normal step: ux 0, never the peak
+    steps[0].converged = true;
+    steps[0].mu = 9;
+    for (std::size_t k = 0; k < mus.size(); ++k) {
+      ContactStep st;
+      st.ux = 1e-3 * double(k + 1);
+      st.mu = mus[k];
+      st.converged = int(k) < failed_from;
+      steps.push_back(st);
+    }
+    return steps;
+  };
+  const auto rising = curve({0.1, 0.2, 0.3});
+  ASSERT_NE(peak_friction(rising), nullptr);
+  EXPECT_DOUBLE_EQ(peak_friction(rising)->mu, 0.3);
+  EXPECT_FALSE(peak_reached(rising));
+  const auto turned = curve({0.1, 0.3, 0.25});
+  EXPECT_DOUBLE_EQ(peak_friction(turned)->mu, 0.3);
+  EXPECT_TRUE(peak_reached(turned));
+  // A fall seen only in a step that did not converge is no evidence of the peak.
+  const auto unconverged_fall = curve({0.1, 0.3, 0.2}, 2);
+  EXPECT_DOUBLE_EQ(peak_friction(unconverged_fall)->mu, 0.3);
+  EXPECT_FALSE(peak_reached(unconverged_fall));
+  EXPECT_FALSE(peak_reached(curve({})));
+}
+
 TEST(Fem, PenetrationRetriesLastWhileTheDeepestNodeComesOut) {
   PenetrationRetries settling;
   for (double depth : {1.21e-4, 1.19e-4, 8.77e-5, 6.46e-5, 5.24e-5, 4.12e-5, 3.31e-5})

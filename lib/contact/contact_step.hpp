@@ -44,4 +44,10 @@ struct ContactStep {
 // nullptr when there is none.
 const ContactStep* peak_friction(const std::vector<ContactStep>& steps);
 
+// Whether the shear curve turned over: a converged shear step after the peak has a lower mu.
+// When it has not (the peak is the last converged shear step), the static friction is only
+// bounded from below by the peak mu: on rough surfaces (rms slope ~2) mu still rises after the
+// top has moved half the block's side, so a short --ux reports the loading curve, not the peak.
+bool peak_reached(const std::vector<ContactStep>& steps);
+
 }  // namespace wr
