@@ -154,8 +154,7 @@ void print_peak(const ContactStep* peak, const std::vector<ContactStep>& steps) 
     std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
                 peak->ux, int(peak - steps.data()) + 1);
   else
-    std::printf("  static friction: mu >= %.4g; mu still rises at the last shear step (ux = %.4g m, step %d), so the "
-                "peak lies beyond it: shear further (--ux)\n",
+    std::printf("  static friction: mu >= %.4g (still rising at ux = %.4g m, step %d: the peak lies beyond --ux)\n",
                 peak->mu, peak->ux, int(peak - steps.data()) + 1);
 }
 
@@ -443,8 +442,9 @@ int run_contact(ContactCli c) {
   for (const auto& st : r.steps) steps.push_back(step_json(st));
   if (c.opt.shear && c.opt.follow_geometry) {  // known only now: did the friction settle?
     validity.checks.push_back(friction_convergence_check(r.steps));
+    validity.checks.push_back(friction_peak_check(r.steps));
     validity.json = validity_json(model, validity.checks, validity.json["chosen_by"].get<std::string>());
-    if (rank == 0) warn_if_invalid(model, {validity.checks.back()});
+    if (rank == 0) warn_if_invalid(model, std::vector<ValidityCheck>(validity.checks.end() - 2, validity.checks.end()));
   }
   Provenance prov;
   prov.command = "contact";

@@ -16,6 +16,7 @@
 #include "lib/fem/framed_stiffness.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/contact/adaptive_damping.hpp"
+#include "lib/contact/friction_convergence.hpp"
 #include "lib/fem/penetration_retries.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/contact/contact_scene.hpp"
@@ -262,6 +263,9 @@ TEST(ContactCurve, PeakIsReachedOnlyWhenALaterShearStepFalls) {
   const auto turned = curve({0.1, 0.3, 0.25});
   EXPECT_DOUBLE_EQ(peak_friction(turned)->mu, 0.3);
   EXPECT_TRUE(peak_reached(turned));
+  EXPECT_TRUE(friction_peak_check(turned).passed);
+  EXPECT_FALSE(friction_peak_check(rising).passed);
+  EXPECT_FALSE(friction_peak_check(rising).decides_model);  // a longer --ux, not another model
   // A fall seen only in a step that did not converge is no evidence of the peak.
   const auto unconverged_fall = curve({0.1, 0.3, 0.2}, 2);
   EXPECT_DOUBLE_EQ(peak_friction(unconverged_fall)->mu, 0.3);

@@ -97,7 +97,10 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   req.e_star = s.young / (1 - s.poisson * s.poisson);
   auto checks = validity_checks(s.model, req);
   SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, req.rms_slope, comm) : run_spectral(obstacle, s);
-  if (s.model == ContactModel::fem && s.shear) checks.push_back(friction_convergence_check(r.steps));
+  if (s.model == ContactModel::fem && s.shear) {
+    checks.push_back(friction_convergence_check(r.steps));
+    checks.push_back(friction_peak_check(r.steps));
+  }
   r.validity = validity_json(s.model, checks, "user");
   summarise(r);
   return r;

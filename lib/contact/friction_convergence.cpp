@@ -55,4 +55,22 @@ ValidityCheck friction_convergence_check(const std::vector<ContactStep>& steps) 
   return c;
 }
 
+ValidityCheck friction_peak_check(const std::vector<ContactStep>& steps) {
+  ValidityCheck c{"friction peak reached", true, "", false};
+  const ContactStep* peak = peak_friction(steps);
+  if (!peak) {
+    c.detail = "no converged shear step";
+    return c;
+  }
+  c.passed = peak_reached(steps);
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                c.passed ? "mu peaks at %.4g (ux %.4g m, step %d) and falls after it"
+                         : "mu still rises at its last converged shear step (%.4g at ux %.4g m, step %d): the static "
+                           "friction is at least this; shear further (--ux)",
+                peak->mu, peak->ux, int(peak - steps.data()) + 1);
+  c.detail = buf;
+  return c;
+}
+
 }  // namespace wr

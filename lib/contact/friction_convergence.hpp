@@ -42,4 +42,10 @@ double friction_drift(const std::vector<double>& mu, const std::vector<double>& 
 // no cheaper model does better. Passes, saying so, when no step was assessed.
 ValidityCheck friction_convergence_check(const std::vector<ContactStep>& steps);
 
+// The "friction peak reached" check: the shear curve turned over (peak_reached), so the peak mu
+// is the scene's static friction and not a point on its loading branch. An accuracy flag
+// (decides_model false): the cure is a longer --ux, not another model. Passes, saying so, when
+// the run has no converged shear step.
+ValidityCheck friction_peak_check(const std::vector<ContactStep>& steps);
+
 }  // namespace wr
