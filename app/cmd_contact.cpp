@@ -63,6 +63,7 @@ nlohmann::json step_json(const ContactStep& s) {
           {"linear_iterations", s.linear_iterations},
           {"extrapolations", s.extrapolations},
           {"rejected_jumps", s.rejected_jumps},
+          {"failed_attempts", s.failed_attempts},
           {"wall_s", s.wall_s},
           {"converged", s.converged},
           {"message", s.message},
@@ -167,7 +168,8 @@ void print_step_header() {
 void print_step_row(int k, const ContactStep& st) {
   std::printf("  %4d %10.4g %10.4g %11.4e %11.4e %8.4f %8.4f %9.4g %10.3e %10.2e %5d %6d %8.2f%s\n", k, st.uz, st.ux,
               st.fz, st.fx, st.mu, st.area_fraction, st.sigma_star, st.separation, st.max_penetration,
-              st.signorini_iterations, st.linear_iterations, st.wall_s, st.converged ? "" : "  FAILED");
+              st.signorini_iterations, st.linear_iterations, st.wall_s,
+              !st.converged ? "  FAILED" : st.failed_attempts > 0 ? "  (cut back)" : "");
   std::fflush(stdout);
 }
 
@@ -561,6 +563,10 @@ Command add_contact(CLI::App& root) {
   s->add_option("--max-penetration", c->opt.max_penetration,
                  "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "
                  "negative: no check)");
+  s->add_option("--cutbacks", c->opt.max_cutbacks,
+                 "fem: a failed load step is retried from the last converged one in two halves, each halvable again, "
+                 "down to this many times (0 ... 8; 0: a failed step ends the run)")
+      ->capture_default_str();
   s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
       ->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step (fem; spectral shear)")

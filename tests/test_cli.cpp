@@ -258,8 +258,38 @@ TEST_F(Cli, ContactRunsAShearTestAndReportsEveryStep) {
   r = run("contact --surface " + s + " --problem normal --uz 1e-4 --extrapolate 1");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("--extrapolate"), std::string::npos) << r.err;
+  r = run("contact --surface " + s + " --problem normal --uz 1e-4 --cutbacks -1");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--cutbacks"), std::string::npos) << r.err;
   r = run("contact --surface " + path("nope.h5") + " --uz 1e-4");
   EXPECT_EQ(r.code, 2);
+}
+
+// Load-step cutback: the press to 0.4 mm needs 22 Signorini iterations in one step and 19 in
+// each of two halves (measured), so a cap of 20 fails the single step; with --cutbacks 1 the
+// step is retried from the unloaded block as two halves, and both the half-way state and the
+// end agree with a run asked for two steps (to the iteration's tolerance: the retry starts from
+// the same state but its round-off path differs).
+TEST_F(Cli, ContactCutbackRetriesAFailedStepInTwoHalves) {
+  const std::string s = path("s.h5"), once = path("once.json"), cut = path("cut.json"), two = path("two.json");
+  ASSERT_EQ(run("synth --size 12 --q0-ratio 2 --dx 1e-4 --h0 2e-5 --seed 4 -o " + s).code, 0);
+  const std::string press = "contact --surface " + s + " --problem normal --uz 4e-4 --refine 1 --tol 1e-6 ";
+  CliRun r = run(press + "--steps 1 --max-iterations 20 --json " + once);
+  ASSERT_EQ(r.code, 3) << r.err;  // without cutbacks the capped single step fails
+  r = run(press + "--steps 1 --max-iterations 20 --cutbacks 1 --json " + cut);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("(cut back)"), std::string::npos) << r.out;
+  ASSERT_EQ(run(press + "--steps 2 --json " + two).code, 0);
+  std::ifstream fc(cut), ft(two);
+  const auto jc = nlohmann::json::parse(fc), jt = nlohmann::json::parse(ft);
+  ASSERT_EQ(jc["steps"].size(), 2u);
+  EXPECT_EQ(jc["steps"][0]["failed_attempts"].get<int>(), 1);
+  EXPECT_EQ(jc["steps"][1]["failed_attempts"].get<int>(), 0);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_DOUBLE_EQ(jc["steps"][k]["uz"].get<double>(), jt["steps"][k]["uz"].get<double>());
+    EXPECT_NEAR(jc["steps"][k]["fz"].get<double>() / jt["steps"][k]["fz"].get<double>(), 1.0, 1e-5) << k;
+    EXPECT_NEAR(jc["steps"][k]["area_fraction"].get<double>(), jt["steps"][k]["area_fraction"].get<double>(), 1e-9) << k;
+  }
 }
 
 TEST_F(Cli, ContactSpectralModelReportsEveryStep) {

@@ -21,6 +21,9 @@ struct ContactStep {
   int signorini_iterations = 0, active_set_iterations = 0, linear_iterations = 0;
   int extrapolations = 0;  // FEM: slow-mode (Aitken) jumps taken in the step
   int rejected_jumps = 0;  // FEM: of them, undone (the contact set collapsed after the jump)
+  // FEM with cutbacks: failed attempts at longer increments just before this step (their wall
+  // time is included in wall_s).
+  int failed_attempts = 0;
   // FEM with a coarse start (ContactTestOptions::coarse_refine): the coarse block's Signorini
   // iterations and wall time in this step (included in wall_s), and whether it converged.
   int coarse_iterations = 0;

@@ -23,6 +23,14 @@ int rank_of(MPI_Comm comm) {
 
 }  // namespace
 
+std::vector<LoadTarget> load_plan(const ContactTestOptions& opt) {
+  std::vector<LoadTarget> plan;
+  for (int k = 1; k <= opt.normal_steps; ++k) plan.push_back({opt.uz * k / opt.normal_steps, 0.0, opt.max_cutbacks});
+  if (opt.shear)
+    for (int k = 1; k <= opt.shear_steps; ++k) plan.push_back({opt.uz, opt.ux * k / opt.shear_steps, opt.max_cutbacks});
+  return plan;
+}
+
 void check_extrapolation_block(int every) {
   if (every < 0 || every == 1) throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
 }
@@ -38,6 +46,9 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   if (opt.layers_per_level < 1) throw InputError("--layers", "must be >= 1");
   if (opt.max_coarsenings < 0) throw InputError("--coarsen", "must be >= 0");
   if (opt.normal_steps < 1 || (opt.shear && opt.shear_steps < 1)) throw InputError("--steps", "must be >= 1");
+  if (opt.max_cutbacks < 0 || opt.max_cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
+  if (opt.max_cutbacks > 0 && opt.coarse_refine > 0)
+    throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
 
   const double t_start = MPI_Wtime();
   ContactTestResult res;
@@ -106,17 +117,20 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.facet_band = opt.facet_band;
   res.face_nx = std::size_t(b.mesh.nx + 1);
   res.face_ny = std::size_t(b.mesh.ny + 1);
-  const int total = opt.normal_steps + (opt.shear ? opt.shear_steps : 0);
-  for (int k = 1; k <= total; ++k) {
-    const bool normal_phase = k <= opt.normal_steps;
-    load.uz = normal_phase ? opt.uz * k / opt.normal_steps : opt.uz;
-    load.ux = normal_phase ? 0.0 : opt.ux * (k - opt.normal_steps) / opt.shear_steps;
+  std::vector<LoadTarget> plan = load_plan(opt);
+  LoadTarget last{0, 0, 0};             // the last converged state (the unloaded block at first)
+  BlockState last_state = block.state();
+  double wasted_s = 0;                  // wall time of failed attempts, charged to the next step
+  int failed_attempts = 0;
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    load.uz = plan[k].uz;
+    load.ux = plan[k].ux;
     const double t0 = MPI_Wtime();
     ContactStep st;
     if (coarse) {
       ContactLoad cl = load;
       cl.face_maps = false;
-      if (opt.trace && rank_of(opt.comm) == 0) std::fprintf(stderr, "  step %d on the coarse block (refine %d):\n", k, opt.coarse_refine);
+      if (opt.trace && rank_of(opt.comm) == 0) std::fprintf(stderr, "  step %d on the coarse block (refine %d):\n", int(k + 1), opt.coarse_refine);
       const ContactSolution cs = coarse->solve(cl);
       st.coarse_iterations = cs.outer_iterations;
       st.coarse_converged = cs.converged;
@@ -129,7 +143,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       }
       coarse_face = std::move(now);
       if (opt.trace && rank_of(opt.comm) == 0)
-        std::fprintf(stderr, "  coarse step %d: %s in %d Signorini iterations, %.1f s; the fine step starts from it\n", k,
+        std::fprintf(stderr, "  coarse step %d: %s in %d Signorini iterations, %.1f s; the fine step starts from it\n", int(k + 1),
                      cs.converged ? "converged" : "NOT converged", cs.outer_iterations, st.coarse_wall_s);
     }
     ContactSolution s = block.solve(load);
@@ -172,6 +186,24 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
                     s.nodes_over_penetration, s.nodes_over_penetration == 1 ? "" : "s", opt.max_penetration);
       st.message = buf;
     }
+    if (!st.converged && plan[k].cutbacks_left > 0) {
+      // Load-step cutback: back to the last converged state, and the way there in two halves.
+      if (rank_of(opt.comm) == 0 && (opt.trace || opt.progress_every_s > 0))
+        std::fprintf(stderr, "  step to uz %.4g m, ux %.4g m failed after %d Signorini iterations and %.0f s (%s); "
+                     "retrying it in two halves from uz %.4g m, ux %.4g m\n",
+                     load.uz, load.ux, st.signorini_iterations, MPI_Wtime() - t0, st.message.c_str(), last.uz, last.ux);
+      block.restore(last_state);
+      wasted_s += MPI_Wtime() - t0;
+      ++failed_attempts;
+      --plan[k].cutbacks_left;
+      const LoadTarget half{(last.uz + plan[k].uz) / 2, (last.ux + plan[k].ux) / 2, plan[k].cutbacks_left};
+      plan.insert(plan.begin() + std::ptrdiff_t(k), half);
+      --k;  // the loop's ++k lands on the half step
+      continue;
+    }
+    st.wall_s += wasted_s;
+    st.failed_attempts = std::exchange(failed_attempts, 0);
+    wasted_s = 0;
     st.history = std::move(s.history);
     // Friction is only asked of shear steps; a normal step's Fx is a by-product.
     if (load.ux != 0 && opt.follow_geometry) st.mu_drift = friction_drift(s.mu_history, s.damping_history, opt.damping);
@@ -185,6 +217,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       res.failed = true;
       break;
     }
+    last = plan[k];
+    if (opt.max_cutbacks > 0) last_state = block.state();
   }
   if (!opt.vtu_path.empty()) block.write_vtu(opt.vtu_path);
   res.wall_s = MPI_Wtime() - t_start;

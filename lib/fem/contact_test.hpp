@@ -3,7 +3,8 @@
 // face pushed down in steps) and Problem B (shear test: after A, the top pushed sideways in
 // steps), on an elastic block whose side equals the obstacle's period. Per step: forces,
 // friction ratio, contact fraction, normalised pressure, separation, penetration, iterations,
-// wall time. A step whose solver fails ends the run; the finished steps are kept.
+// wall time. A step whose solver fails is retried in halves (max_cutbacks) or ends the run;
+// the finished steps are kept.
 #include <functional>
 #include <string>
 #include <vector>
@@ -45,7 +46,22 @@ struct ContactTestOptions {
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
   MPI_Comm comm = MPI_COMM_NULL;  // the processes sharing the block (null: PETSC_COMM_WORLD)
   AmgHierarchy amg = AmgHierarchy::automatic;  // CG's AMG hierarchy (amg_hierarchy.hpp)
+  // Load-step cutbacks: a step that fails (not converged, or a node left too deep) is retried
+  // from the last converged state in two halves, each of which may again be halved, down to
+  // this many times (0 ... 8; 0: a failed step ends the run). Not with coarse_refine.
+  int max_cutbacks = 0;
 };
+
+// One load state of the plan: the top's displacement and the halvings still allowed on the way
+// to it from the state before.
+struct LoadTarget {
+  double uz = 0, ux = 0;  // m
+  int cutbacks_left = 0;
+};
+
+// The requested states in order: opt.normal_steps equal normal increments to uz, then (shear)
+// opt.shear_steps equal tangential increments to ux at uz.
+std::vector<LoadTarget> load_plan(const ContactTestOptions& opt);
 
 struct ContactTestResult {
   std::size_t nodes = 0, dofs = 0, face_nodes = 0, elements = 0, mesh_points = 0;

@@ -482,6 +482,32 @@ const GradedMesh& ElasticBlock::mesh() const { return *impl_->mesh; }
 
 std::size_t ElasticBlock::nodes() const { return std::size_t(impl_->mesh->nodes()); }
 
+BlockState ElasticBlock::state() const {
+  const Impl& m = *impl_;
+  BlockState s;
+  PetscInt n = 0;
+  check(VecGetLocalSize(m.u, &n), "VecGetLocalSize");
+  const PetscScalar* a;
+  check(VecGetArrayRead(m.u, &a), "VecGetArrayRead");
+  s.u.assign(a, a + n);
+  check(VecRestoreArrayRead(m.u, &a), "VecRestoreArrayRead");
+  s.active = m.active;
+  return s;
+}
+
+void ElasticBlock::restore(const BlockState& s) {
+  Impl& m = *impl_;
+  PetscInt n = 0;
+  check(VecGetLocalSize(m.u, &n), "VecGetLocalSize");
+  if (s.u.size() != std::size_t(n))
+    throw std::invalid_argument("ElasticBlock::restore: the state was taken from another block");
+  PetscScalar* a;
+  check(VecGetArray(m.u, &a), "VecGetArray");
+  std::copy(s.u.begin(), s.u.end(), a);
+  check(VecRestoreArray(m.u, &a), "VecRestoreArray");
+  m.active = s.active;
+}
+
 std::vector<double> ElasticBlock::face_displacement() const {
   const Impl& m = *impl_;
   const std::size_t nfx = std::size_t(m.face_nx() + 1);

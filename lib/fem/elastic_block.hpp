@@ -107,6 +107,14 @@ struct ContactSolution {
   std::vector<double> face_status;    // 1 in contact, 0 free
 };
 
+// What solve() carries from one load step to the next, on this rank: its owned displacement
+// dofs (m) and its face nodes' contact set. Why: a failed load step is retried from the last
+// converged one with a shorter increment (ContactTestOptions::max_cutbacks).
+struct BlockState {
+  std::vector<double> u;
+  std::vector<char> active;
+};
+
 // Builds the mesh and the stiffness matrix once; solve() may be called for many loads and
 // continues from the previous solution (load stepping).
 class ElasticBlock {
@@ -117,6 +125,10 @@ class ElasticBlock {
   ElasticBlock& operator=(const ElasticBlock&) = delete;
 
   ContactSolution solve(const ContactLoad& load);
+  // The state solve() continues from, and a return to one taken from this block earlier (not
+  // collective; every rank restores its own part).
+  BlockState state() const;
+  void restore(const BlockState& s);
   // The deformed block as a VTK unstructured grid (.vtu, ParaView; hexahedra, point data
   // "displacement" in m, hanging nodes interpolated). Collective; rank 0 writes `path`.
   void write_vtu(const std::string& path) const;
