@@ -454,7 +454,7 @@ int run_contact(ContactCli c) {
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration},
+                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration}, {"cutbacks", c.opt.max_cutbacks},
                      {"follow_geometry", c.opt.follow_geometry}, {"amg", c.amg}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "

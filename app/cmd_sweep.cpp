@@ -48,6 +48,11 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_option("--tol", c.scene.tolerance, "relative change per geometry (Signorini) iteration")->capture_default_str();
   s.add_option("--spectral-tol", c.scene.spectral_tolerance, "spectral normal solver tolerance (>= 1e-9: single-precision CG)")->capture_default_str();
   s.add_option("--max-iterations", c.scene.max_iterations, "per step (0: the model's default)");
+  s.add_option("--damping", c.scene.damping, "damping alpha_c of the geometry (Signorini) iteration (as `contact --damping`)")
+      ->capture_default_str();
+  s.add_option("--cutbacks", c.scene.cutbacks,
+               "fem: halvings allowed of a failed load step (as `contact --cutbacks`; 0: a failed step fails the run)")
+      ->capture_default_str();
   s.add_option("--extrapolate", c.scene.extrapolate_every,
                "fem: slow-mode jump every N Signorini iterations (as `contact --extrapolate`; 0: off)")
       ->capture_default_str();

@@ -23,6 +23,8 @@ void check_contact_scene(const ContactScene& s) {
   if (!(s.poisson > -1 && s.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
   if (!(s.tolerance > 0)) throw InputError("--tol", "must be > 0");
   check_extrapolation_block(s.extrapolate_every);
+  if (s.cutbacks < 0 || s.cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
+  if (!(s.damping > 0 && s.damping <= 2)) throw InputError("--damping", "must lie in (0, 2]");
 }
 
 namespace {
@@ -58,6 +60,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms
   o.damping = s.damping;
   o.extrapolate_every = s.extrapolate_every;
   if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
+  o.max_cutbacks = s.cutbacks;
   o.rms_slope = rms_slope;
   o.max_penetration = 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
   o.comm = comm;
@@ -188,6 +191,7 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"tolerance", s.tolerance},
           {"spectral_tolerance", s.spectral_tolerance},
           {"max_iterations", s.max_iterations},
+          {"cutbacks", s.cutbacks},
           {"facet_normals", s.facet_normals},
           {"facet_band", s.facet_band}};
 }

@@ -36,6 +36,7 @@ struct ContactScene {
   double tolerance = 1e-4;    // relative change per geometry (Signorini) iteration
   double spectral_tolerance = 1e-8;  // Polonsky-Keer error
   int max_iterations = 0;     // per step (0: the model's default)
+  int cutbacks = 0;           // FEM: halvings of a failed load step (ContactTestOptions::max_cutbacks)
   int threads = 1;            // spectral FFT threads
   FftPlanning planning = FftPlanning::estimate;  // spectral FFT plans (lib/core/fft.hpp)
   // FEM: constrain each contact node along the normal of the obstacle facet its ray hits (the
