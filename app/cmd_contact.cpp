@@ -411,7 +411,9 @@ int run_contact(ContactCli c) {
   c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
   c.opt.follow_geometry = !c.vertical;
   c.opt.rms_slope = rms_slope_finite_difference(s.map);
-  if (c.opt.max_penetration == 0) c.opt.max_penetration = 0.1 * height_stats(s.map).sq;
+  // On a wet obstacle the tolerance is the ground's, as in the sweeps (ContactScene::max_penetration).
+  if (c.opt.max_penetration == 0)
+    c.opt.max_penetration = 0.1 * height_stats(c.wet.empty() ? s.map : load_surface(c.surface).map).sq;
   if (c.opt.max_penetration < 0) c.opt.max_penetration = 0;  // no check
   c.opt.face_maps = !c.out.empty();
   c.opt.progress_every_s = c.quiet ? 0 : 10;
@@ -561,8 +563,8 @@ Command add_contact(CLI::App& root) {
                 "dividing it), and its increment starts the step on the fine block; 0: off (experimental)")
       ->capture_default_str();
   s->add_option("--max-penetration", c->opt.max_penetration,
-                 "deepest penetration a converged step may leave, m (default 0.1 x the obstacle's rms height; "
-                 "negative: no check)");
+                 "deepest penetration a converged step may leave, m (default 0.1 x the rms height of --surface, the "
+                 "ground also under --wet; negative: no check)");
   s->add_option("--cutbacks", c->opt.max_cutbacks,
                  "fem: a failed load step is retried from the last converged one in two halves, each halvable again, "
                  "down to this many times (0 ... 8; 0: a failed step ends the run)")

@@ -24,6 +24,7 @@ void check_contact_scene(const ContactScene& s) {
   if (!(s.tolerance > 0)) throw InputError("--tol", "must be > 0");
   check_extrapolation_block(s.extrapolate_every);
   if (s.cutbacks < 0 || s.cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
+  if (!(s.max_penetration >= 0)) throw InputError("max_penetration", "must be >= 0 m (0: 0.1 x the obstacle's rms height)");
   if (!(s.damping > 0 && s.damping <= 2)) throw InputError("--damping", "must lie in (0, 2]");
 }
 
@@ -62,7 +63,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms
   if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
   o.max_cutbacks = s.cutbacks;
   o.rms_slope = rms_slope;
-  o.max_penetration = 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
+  o.max_penetration = s.max_penetration > 0 ? s.max_penetration : 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
   o.comm = comm;
   o.facet_normals = s.facet_normals;
   o.facet_band = s.facet_band;
@@ -192,6 +193,7 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"spectral_tolerance", s.spectral_tolerance},
           {"max_iterations", s.max_iterations},
           {"cutbacks", s.cutbacks},
+          {"max_penetration", s.max_penetration},
           {"facet_normals", s.facet_normals},
           {"facet_band", s.facet_band}};
 }

@@ -140,6 +140,8 @@ nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key) {
   const auto t_contact = std::chrono::steady_clock::now();
   ContactScene scene = spec_.scene;
   scene.threads = threads_;
+  // One penetration tolerance for the whole sweep: the ground's (ContactScene::max_penetration).
+  if (scene.max_penetration == 0) scene.max_penetration = 0.1 * height_stats(ground_, threads_).sq;
   const SceneResult c = run_contact_scene_caught(wet, scene, comm_);
   rec["contact"] = scene_result_json(c);
   const bool ok = !c.failed && std::isfinite(c.mu_peak);
