@@ -136,6 +136,7 @@ nlohmann::json scene_result_json(const SceneResult& r) {
                      {"separation", st.separation},
                      {"max_penetration", st.max_penetration},
                      {"iterations", st.signorini_iterations},
+                     {"failed_attempts", st.failed_attempts},
                      {"mu_drift", std::isfinite(st.mu_drift) ? nlohmann::json(st.mu_drift) : nlohmann::json(nullptr)},
                      {"converged", st.converged},
                      {"wall_s", st.wall_s}});

@@ -74,7 +74,7 @@ SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactSce
 
 // The run as sweeps record it: {model, mu_peak (null without a peak), ux_peak, area_at_peak,
 // area_normal, fz_normal, failed, message, unknowns, steps [{uz, ux, fz, fx, mu, area_fraction,
-// sigma_star, separation, max_penetration, iterations, converged, wall_s}], validity}.
+// sigma_star, separation, max_penetration, iterations, failed_attempts, converged, wall_s}], validity}.
 nlohmann::json scene_result_json(const SceneResult& r);
 
 nlohmann::json contact_scene_json(const ContactScene& s);
