@@ -413,7 +413,7 @@ int run_contact(ContactCli c) {
   c.opt.rms_slope = rms_slope_finite_difference(s.map);
   // On a wet obstacle the tolerance is the ground's, as in the sweeps (ContactScene::max_penetration).
   if (c.opt.max_penetration == 0)
-    c.opt.max_penetration = 0.1 * height_stats(c.wet.empty() ? s.map : load_surface(c.surface).map).sq;
+    c.opt.max_penetration = default_max_penetration(c.wet.empty() ? s.map : load_surface(c.surface).map, 0);
   if (c.opt.max_penetration < 0) c.opt.max_penetration = 0;  // no check
   c.opt.face_maps = !c.out.empty();
   c.opt.progress_every_s = c.quiet ? 0 : 10;

@@ -23,7 +23,7 @@ void check_contact_scene(const ContactScene& s) {
   if (!(s.poisson > -1 && s.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
   if (!(s.tolerance > 0)) throw InputError("--tol", "must be > 0");
   check_extrapolation_block(s.extrapolate_every);
-  if (s.cutbacks < 0 || s.cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
+  check_cutbacks(s.cutbacks);
   if (!(s.max_penetration >= 0)) throw InputError("max_penetration", "must be >= 0 m (0: 0.1 x the obstacle's rms height)");
   if (!(s.damping > 0 && s.damping <= 2)) throw InputError("--damping", "must lie in (0, 2]");
 }
@@ -63,7 +63,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms
   if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
   o.max_cutbacks = s.cutbacks;
   o.rms_slope = rms_slope;
-  o.max_penetration = s.max_penetration > 0 ? s.max_penetration : 0.1 * height_stats(obstacle, 1).sq;  // as `wetroad contact`
+  o.max_penetration = s.max_penetration > 0 ? s.max_penetration : default_max_penetration(obstacle);
   o.comm = comm;
   o.facet_normals = s.facet_normals;
   o.facet_band = s.facet_band;
@@ -175,6 +175,8 @@ SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap
   check_spectral_test_options(o);
   return o;
 }
+
+double default_max_penetration(const HeightMap& ground, int threads) { return 0.1 * height_stats(ground, threads).sq; }
 
 nlohmann::json contact_scene_json(const ContactScene& s) {
   return {{"model", model_name(s.model)}, {"shear", s.shear},

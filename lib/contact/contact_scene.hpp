@@ -79,6 +79,10 @@ nlohmann::json scene_result_json(const SceneResult& r);
 
 nlohmann::json contact_scene_json(const ContactScene& s);
 
+// The default deepest penetration a converged FEM step may leave, m: 0.1 x the rms height of the
+// ground (the dry surface, also when the obstacle is its wet version; ContactScene::max_penetration).
+double default_max_penetration(const HeightMap& ground, int threads = 1);
+
 // The spectral model's options for the scene on `lattice` (the obstacle already resampled to
 // the face lattice, resample_triangulated). Throws InputError as check_spectral_test_options.
 SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap& lattice);

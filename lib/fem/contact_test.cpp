@@ -31,6 +31,10 @@ std::vector<LoadTarget> load_plan(const ContactTestOptions& opt) {
   return plan;
 }
 
+void check_cutbacks(int cutbacks) {
+  if (cutbacks < 0 || cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
+}
+
 void check_extrapolation_block(int every) {
   if (every < 0 || every == 1) throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
 }
@@ -46,7 +50,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   if (opt.layers_per_level < 1) throw InputError("--layers", "must be >= 1");
   if (opt.max_coarsenings < 0) throw InputError("--coarsen", "must be >= 0");
   if (opt.normal_steps < 1 || (opt.shear && opt.shear_steps < 1)) throw InputError("--steps", "must be >= 1");
-  if (opt.max_cutbacks < 0 || opt.max_cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
+  check_cutbacks(opt.max_cutbacks);
   if (opt.max_cutbacks > 0 && opt.coarse_refine > 0)
     throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
 
@@ -119,7 +123,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   res.face_ny = std::size_t(b.mesh.ny + 1);
   std::vector<LoadTarget> plan = load_plan(opt);
   LoadTarget last{0, 0, 0};             // the last converged state (the unloaded block at first)
-  BlockState last_state = block.state();
+  BlockState last_state = opt.max_cutbacks > 0 ? block.state() : BlockState{};  // only cutbacks go back
   double wasted_s = 0;                  // wall time of failed attempts, charged to the next step
   int failed_attempts = 0;
   for (std::size_t k = 0; k < plan.size(); ++k) {

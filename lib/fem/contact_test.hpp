@@ -78,6 +78,8 @@ struct ContactTestResult {
 
 // --extrapolate's value: 0 (off) or a block of >= 2 Signorini iterations; InputError otherwise.
 void check_extrapolation_block(int every);
+// --cutbacks' value: 0 ... 8; InputError otherwise.
+void check_cutbacks(int cutbacks);
 
 // `obstacle` must be periodic. `on_step` (may be empty) is called after every step.
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,

@@ -141,7 +141,7 @@ nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key) {
   ContactScene scene = spec_.scene;
   scene.threads = threads_;
   // One penetration tolerance for the whole sweep: the ground's (ContactScene::max_penetration).
-  if (scene.max_penetration == 0) scene.max_penetration = 0.1 * height_stats(ground_, threads_).sq;
+  if (scene.max_penetration == 0) scene.max_penetration = default_max_penetration(ground_, threads_);
   const SceneResult c = run_contact_scene_caught(wet, scene, comm_);
   rec["contact"] = scene_result_json(c);
   const bool ok = !c.failed && std::isfinite(c.mu_peak);
