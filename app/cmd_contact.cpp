@@ -406,6 +406,7 @@ int run_contact(ContactCli c) {
   c.opt.shear = c.problem == "shear";
   if (c.opt.shear && c.opt.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
   check_extrapolation_block(c.opt.extrapolate_every);
+  check_cutbacks(c.opt.max_cutbacks);
   c.opt.amg = parse_amg_hierarchy(c.amg, "--amg");
   c.opt.normal_steps = c.steps;
   c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
