@@ -64,6 +64,7 @@ nlohmann::json step_json(const ContactStep& s) {
           {"extrapolations", s.extrapolations},
           {"rejected_jumps", s.rejected_jumps},
           {"failed_attempts", s.failed_attempts},
+          {"predictor_ratio", s.predictor_ratio},
           {"wall_s", s.wall_s},
           {"converged", s.converged},
           {"message", s.message},
@@ -457,7 +458,7 @@ int run_contact(ContactCli c) {
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration}, {"cutbacks", c.opt.max_cutbacks},
+                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration}, {"cutbacks", c.opt.max_cutbacks}, {"predictor", c.opt.secant_predictor},
                      {"follow_geometry", c.opt.follow_geometry}, {"amg", c.amg}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
@@ -570,6 +571,9 @@ Command add_contact(CLI::App& root) {
                  "fem: a failed load step is retried from the last converged one in two halves, each halvable again, "
                  "down to this many times (0 ... 8; 0: a failed step ends the run)")
       ->capture_default_str();
+  s->add_flag("--predictor", c->opt.secant_predictor,
+              "fem: start each step that continues the previous one's direction from the last state extrapolated "
+              "along the last increment (secant predictor), not from the last state itself");
   s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
       ->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step (fem; spectral shear)")

@@ -20,6 +20,8 @@
 #include "lib/fem/penetration_retries.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
 #include "lib/contact/contact_scene.hpp"
+#include "roads/height_stats.hpp"
+#include "roads/synthesize.hpp"
 
 namespace wr {
 namespace {
@@ -551,6 +553,80 @@ TEST(Fem, LiftedFaceFieldReproducesBilinearFieldsOnAFinerFace) {
       }
   EXPECT_LT(worst, 1e-15);
   EXPECT_THROW(fine.add_lifted_face_field(coarse, cnx + 1, cny), std::invalid_argument);
+}
+
+// The secant predictor extrapolates only along a straight load path: the second normal step
+// (r = 1), a shear step after a shear step (r = 1), a cutback's half step (r = 1/2); not the
+// first shear step (a turn), a reversal, or a step from a repeated state.
+TEST(LoadPath, ContinuationRatioFollowsOnlyAStraightPath) {
+  const LoadTarget o{0, 0, 0}, z1{1e-3, 0, 0}, z2{2e-3, 0, 0}, s1{2e-3, 5e-4, 0}, s2{2e-3, 1e-3, 0},
+      s15{2e-3, 1.25e-3, 0};
+  EXPECT_NEAR(continuation_ratio(o, z1, z2), 1.0, 1e-12);
+  EXPECT_EQ(continuation_ratio(z1, z2, s1), 0.0);
+  EXPECT_NEAR(continuation_ratio(z2, s1, s2), 1.0, 1e-12);
+  EXPECT_NEAR(continuation_ratio(s1, s2, s15), 0.5, 1e-12);
+  EXPECT_EQ(continuation_ratio(s1, s2, s1), 0.0);  // back the way it came
+  EXPECT_EQ(continuation_ratio(s2, s2, s15), 0.0);  // no last increment to follow
+  // The plan's own targets (k/n fractions) count as straight despite rounding.
+  ContactTestOptions opt;
+  opt.shear = true;
+  opt.uz = 9e-3;
+  opt.ux = 16e-3;
+  opt.normal_steps = 3;
+  opt.shear_steps = 7;
+  const std::vector<LoadTarget> plan = load_plan(opt);
+  for (std::size_t k = 2; k < plan.size(); ++k)
+    EXPECT_EQ(continuation_ratio(plan[k - 2], plan[k - 1], plan[k]) > 0, k != 3) << k;
+}
+
+// The secant predictor only moves where a step starts: on a small self-affine scene (16 x 16,
+// pressed to 80 % contact, then sheared by 1.5 lattice cells per step) every step reaches the
+// state of the plain run to the tolerance's reach (tol 1e-6 on the face displacement: Fz to
+// 1e-5, Fx to 1e-3 of the largest |Fx|, the contact set to two nodes), and the predicted steps
+// take fewer Signorini iterations in all (measured: 132 against 149, CG 1465 against 1971).
+TEST(Fem, SecantPredictorReachesTheSameStatesInFewerIterations) {
+  SynthParams sp;
+  sp.nx = sp.ny = 16;
+  sp.q0_ratio = 2;
+  sp.h0 = 4e-5;
+  sp.seed = 4;
+  sp.threads = 1;
+  const HeightMap road = synthesize(sp).map;
+  ContactTestOptions o;
+  o.shear = true;
+  o.uz = 4e-4;
+  o.ux = 6e-4;
+  o.normal_steps = 2;
+  o.shear_steps = 4;
+  o.refine = 1;
+  o.tolerance = 1e-6;
+  o.rms_slope = rms_slope_finite_difference(road, 1);
+  const ContactTestResult plain = run_contact_test(road, o, nullptr);
+  o.secant_predictor = true;
+  const ContactTestResult predicted = run_contact_test(road, o, nullptr);
+  ASSERT_EQ(plain.steps.size(), 6u);
+  ASSERT_EQ(predicted.steps.size(), 6u);
+  double fx_scale = 0;
+  for (const ContactStep& st : plain.steps) fx_scale = std::max(fx_scale, std::abs(st.fx));
+  int its_plain = 0, its_predicted = 0;
+  for (std::size_t k = 0; k < 6; ++k) {
+    const ContactStep &a = plain.steps[k], &b = predicted.steps[k];
+    ASSERT_TRUE(a.converged && b.converged) << k << ": " << a.message << " / " << b.message;
+    EXPECT_EQ(a.predictor_ratio, 0.0);
+    // Predicted: the second normal step and every shear step after the first.
+    EXPECT_NEAR(b.predictor_ratio, (k == 1 || k >= 3) ? 1.0 : 0.0, 1e-12) << k;
+    EXPECT_NEAR(b.fz / a.fz, 1.0, 1e-5) << k;
+    EXPECT_NEAR(b.fx, a.fx, 1e-3 * fx_scale) << k;
+    EXPECT_NEAR(b.area_fraction, a.area_fraction, 2.0 / double(plain.face_nodes)) << k;
+    if (b.predictor_ratio > 0) {
+      its_plain += a.signorini_iterations;
+      its_predicted += b.signorini_iterations;
+    }
+  }
+  EXPECT_LT(its_predicted, its_plain);
+  o.coarse_refine = 1;  // both choose the step's start
+  o.refine = 2;
+  EXPECT_THROW(run_contact_test(road, o, nullptr), InputError);
 }
 
 // Nested iteration on a rough-enough obstacle (a cap pressed into a third of the face): the

@@ -62,6 +62,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms
   o.extrapolate_every = s.extrapolate_every;
   if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
   o.max_cutbacks = s.cutbacks;
+  o.secant_predictor = s.predictor;
   o.rms_slope = rms_slope;
   o.max_penetration = s.max_penetration > 0 ? s.max_penetration : default_max_penetration(obstacle);
   o.comm = comm;
@@ -137,6 +138,7 @@ nlohmann::json scene_result_json(const SceneResult& r) {
                      {"max_penetration", st.max_penetration},
                      {"iterations", st.signorini_iterations},
                      {"failed_attempts", st.failed_attempts},
+                     {"predictor_ratio", st.predictor_ratio},
                      {"mu_drift", std::isfinite(st.mu_drift) ? nlohmann::json(st.mu_drift) : nlohmann::json(nullptr)},
                      {"converged", st.converged},
                      {"wall_s", st.wall_s}});
@@ -196,6 +198,7 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"spectral_tolerance", s.spectral_tolerance},
           {"max_iterations", s.max_iterations},
           {"cutbacks", s.cutbacks},
+          {"predictor", s.predictor},
           {"max_penetration", s.max_penetration},
           {"facet_normals", s.facet_normals},
           {"facet_band", s.facet_band}};

@@ -24,6 +24,9 @@ struct ContactStep {
   // FEM with cutbacks: failed attempts at longer increments just before this step (their wall
   // time is included in wall_s).
   int failed_attempts = 0;
+  // FEM with the secant predictor: the ratio r of the extrapolation the step started from
+  // (ContactTestOptions::secant_predictor); 0: it started from the last converged state.
+  double predictor_ratio = 0;
   // FEM with a coarse start (ContactTestOptions::coarse_refine): the coarse block's Signorini
   // iterations and wall time in this step (included in wall_s), and whether it converged.
   int coarse_iterations = 0;

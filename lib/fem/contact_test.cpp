@@ -21,6 +21,13 @@ int rank_of(MPI_Comm comm) {
   return r;
 }
 
+// u_last + r (u_last - u_prev), with the contact set of the last state.
+BlockState secant_start(const BlockState& last, const BlockState& prev, double r) {
+  BlockState s = last;
+  for (std::size_t i = 0; i < s.u.size(); ++i) s.u[i] += r * (last.u[i] - prev.u[i]);
+  return s;
+}
+
 }  // namespace
 
 std::vector<LoadTarget> load_plan(const ContactTestOptions& opt) {
@@ -29,6 +36,17 @@ std::vector<LoadTarget> load_plan(const ContactTestOptions& opt) {
   if (opt.shear)
     for (int k = 1; k <= opt.shear_steps; ++k) plan.push_back({opt.uz, opt.ux * k / opt.shear_steps, opt.max_cutbacks});
   return plan;
+}
+
+double continuation_ratio(const LoadTarget& prev, const LoadTarget& last, const LoadTarget& next) {
+  const double az = last.uz - prev.uz, ax = last.ux - prev.ux;  // the last increment
+  const double bz = next.uz - last.uz, bx = next.ux - last.ux;  // the coming one
+  const double aa = az * az + ax * ax, dot = az * bz + ax * bx;
+  if (!(aa > 0) || !(dot > 0)) return 0;
+  // Parallel to rounding: the plan's targets are k/n fractions of the final load.
+  const double cross = az * bx - ax * bz;
+  if (std::abs(cross) > 1e-9 * aa) return 0;
+  return dot / aa;
 }
 
 void check_cutbacks(int cutbacks) {
@@ -53,6 +71,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   check_cutbacks(opt.max_cutbacks);
   if (opt.max_cutbacks > 0 && opt.coarse_refine > 0)
     throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
+  if (opt.secant_predictor && opt.coarse_refine > 0)
+    throw InputError("--predictor", "cannot be combined with --coarse-start (both choose the step's start)");
 
   const double t_start = MPI_Wtime();
   ContactTestResult res;
@@ -123,7 +143,10 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   res.face_ny = std::size_t(b.mesh.ny + 1);
   std::vector<LoadTarget> plan = load_plan(opt);
   LoadTarget last{0, 0, 0};             // the last converged state (the unloaded block at first)
-  BlockState last_state = opt.max_cutbacks > 0 ? block.state() : BlockState{};  // only cutbacks go back
+  const bool keep_states = opt.max_cutbacks > 0 || opt.secant_predictor;  // only these look back
+  BlockState last_state = keep_states ? block.state() : BlockState{};
+  LoadTarget prev{0, 0, 0};             // the converged state before `last` (predictor)
+  BlockState prev_state;                // empty until two states are known
   double wasted_s = 0;                  // wall time of failed attempts, charged to the next step
   int failed_attempts = 0;
   for (std::size_t k = 0; k < plan.size(); ++k) {
@@ -131,6 +154,10 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     load.ux = plan[k].ux;
     const double t0 = MPI_Wtime();
     ContactStep st;
+    if (opt.secant_predictor && !prev_state.u.empty()) {
+      st.predictor_ratio = continuation_ratio(prev, last, plan[k]);
+      if (st.predictor_ratio > 0) block.restore(secant_start(last_state, prev_state, st.predictor_ratio));
+    }
     if (coarse) {
       ContactLoad cl = load;
       cl.face_maps = false;
@@ -221,8 +248,9 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       res.failed = true;
       break;
     }
-    last = plan[k];
-    if (opt.max_cutbacks > 0) last_state = block.state();
+    prev = std::exchange(last, plan[k]);
+    if (opt.secant_predictor) prev_state = std::move(last_state);
+    if (keep_states) last_state = block.state();
   }
   if (!opt.vtu_path.empty()) block.write_vtu(opt.vtu_path);
   res.wall_s = MPI_Wtime() - t_start;

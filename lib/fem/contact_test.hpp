@@ -50,6 +50,12 @@ struct ContactTestOptions {
   // from the last converged state in two halves, each of which may again be halved, down to
   // this many times (0 ... 8; 0: a failed step ends the run). Not with coarse_refine.
   int max_cutbacks = 0;
+  // Secant predictor: a step that continues the previous one's direction (the second and later
+  // steps of a phase) starts from the last converged state extrapolated along the last
+  // increment, u_last + r (u_last - u_prev), r = the ratio of the increments, instead of from
+  // u_last. Why: in a shear test the face slides by about the same amount every step, and the
+  // Signorini iteration otherwise spends its iterations walking it there. Not with coarse_refine.
+  bool secant_predictor = false;
 };
 
 // One load state of the plan: the top's displacement and the halvings still allowed on the way
@@ -58,6 +64,10 @@ struct LoadTarget {
   double uz = 0, ux = 0;  // m
   int cutbacks_left = 0;
 };
+
+// r > 0 when `next` continues the straight path prev -> last in its direction (next - last =
+// r (last - prev)); 0 otherwise (a turn, as from the normal phase into the shear, or no step).
+double continuation_ratio(const LoadTarget& prev, const LoadTarget& last, const LoadTarget& next);
 
 // The requested states in order: opt.normal_steps equal normal increments to uz, then (shear)
 // opt.shear_steps equal tangential increments to ux at uz.
