@@ -571,9 +571,11 @@ Command add_contact(CLI::App& root) {
                  "fem: a failed load step is retried from the last converged one in two halves, each halvable again, "
                  "down to this many times (0 ... 8; 0: a failed step ends the run)")
       ->capture_default_str();
-  s->add_flag("--predictor", c->opt.secant_predictor,
+  s->add_flag("--predictor,!--no-predictor", c->opt.secant_predictor,
               "fem: start each step that continues the previous one's direction from the last state extrapolated "
-              "along the last increment (secant predictor), not from the last state itself");
+              "along the last increment (secant predictor; on by default, off under --coarse-start); "
+              "--no-predictor: from the last state itself")
+      ->capture_default_str();
   s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
       ->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step (fem; spectral shear)")

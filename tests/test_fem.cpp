@@ -601,6 +601,7 @@ TEST(Fem, SecantPredictorReachesTheSameStatesInFewerIterations) {
   o.refine = 1;
   o.tolerance = 1e-6;
   o.rms_slope = rms_slope_finite_difference(road, 1);
+  o.secant_predictor = false;
   const ContactTestResult plain = run_contact_test(road, o, nullptr);
   o.secant_predictor = true;
   const ContactTestResult predicted = run_contact_test(road, o, nullptr);
@@ -624,9 +625,6 @@ TEST(Fem, SecantPredictorReachesTheSameStatesInFewerIterations) {
     }
   }
   EXPECT_LT(its_predicted, its_plain);
-  o.coarse_refine = 1;  // both choose the step's start
-  o.refine = 2;
-  EXPECT_THROW(run_contact_test(road, o, nullptr), InputError);
 }
 
 // Nested iteration on a rough-enough obstacle (a cap pressed into a third of the face): the

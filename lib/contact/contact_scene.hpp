@@ -37,7 +37,7 @@ struct ContactScene {
   double spectral_tolerance = 1e-8;  // Polonsky-Keer error
   int max_iterations = 0;     // per step (0: the model's default)
   int cutbacks = 0;           // FEM: halvings of a failed load step (ContactTestOptions::max_cutbacks)
-  bool predictor = false;     // FEM: secant predictor (ContactTestOptions::secant_predictor)
+  bool predictor = true;      // FEM: secant predictor (ContactTestOptions::secant_predictor)
   // FEM: deepest penetration a converged step may leave, m; 0: 0.1 x the obstacle's rms height.
   // A wet obstacle's rms height is lower than its ground's (pools fill the valleys) while its
   // asperities, where the contact is, are the same: sweeps judge every coverage by the ground's.

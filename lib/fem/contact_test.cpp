@@ -71,8 +71,6 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   check_cutbacks(opt.max_cutbacks);
   if (opt.max_cutbacks > 0 && opt.coarse_refine > 0)
     throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
-  if (opt.secant_predictor && opt.coarse_refine > 0)
-    throw InputError("--predictor", "cannot be combined with --coarse-start (both choose the step's start)");
 
   const double t_start = MPI_Wtime();
   ContactTestResult res;
@@ -143,7 +141,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   res.face_ny = std::size_t(b.mesh.ny + 1);
   std::vector<LoadTarget> plan = load_plan(opt);
   LoadTarget last{0, 0, 0};             // the last converged state (the unloaded block at first)
-  const bool keep_states = opt.max_cutbacks > 0 || opt.secant_predictor;  // only these look back
+  const bool predict = opt.secant_predictor && !coarse;  // a coarse start chooses the start itself
+  const bool keep_states = opt.max_cutbacks > 0 || predict;  // only these look back
   BlockState last_state = keep_states ? block.state() : BlockState{};
   LoadTarget prev{0, 0, 0};             // the converged state before `last` (predictor)
   BlockState prev_state;                // empty until two states are known
@@ -154,7 +153,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     load.ux = plan[k].ux;
     const double t0 = MPI_Wtime();
     ContactStep st;
-    if (opt.secant_predictor && !prev_state.u.empty()) {
+    if (predict && !prev_state.u.empty()) {
       st.predictor_ratio = continuation_ratio(prev, last, plan[k]);
       if (st.predictor_ratio > 0) block.restore(secant_start(last_state, prev_state, st.predictor_ratio));
     }
@@ -249,7 +248,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       break;
     }
     prev = std::exchange(last, plan[k]);
-    if (opt.secant_predictor) prev_state = std::move(last_state);
+    if (predict) prev_state = std::move(last_state);
     if (keep_states) last_state = block.state();
   }
   if (!opt.vtu_path.empty()) block.write_vtu(opt.vtu_path);
