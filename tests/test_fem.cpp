@@ -555,6 +555,11 @@ TEST(Fem, LiftedFaceFieldReproducesBilinearFieldsOnAFinerFace) {
   EXPECT_THROW(fine.add_lifted_face_field(coarse, cnx + 1, cny), std::invalid_argument);
 }
 
+// A shear test's load: uz (m) in `normal` steps, then ux (m) in `shear` steps.
+ContactTestOptions shear_test(double uz, double ux, int normal, int shear) {
+  return ContactTestOptions{.shear = true, .uz = uz, .ux = ux, .normal_steps = normal, .shear_steps = shear};
+}
+
 // The secant predictor extrapolates only along a straight load path: the second normal step
 // (r = 1), a shear step after a shear step (r = 1), a cutback's half step (r = 1/2); not the
 // first shear step (a turn), a reversal, or a step from a repeated state.
@@ -568,13 +573,7 @@ TEST(LoadPath, ContinuationRatioFollowsOnlyAStraightPath) {
   EXPECT_EQ(continuation_ratio(s1, s2, s1), 0.0);  // back the way it came
   EXPECT_EQ(continuation_ratio(s2, s2, s15), 0.0);  // no last increment to follow
   // The plan's own targets (k/n fractions) count as straight despite rounding.
-  ContactTestOptions opt;
-  opt.shear = true;
-  opt.uz = 9e-3;
-  opt.ux = 16e-3;
-  opt.normal_steps = 3;
-  opt.shear_steps = 7;
-  const std::vector<LoadTarget> plan = load_plan(opt);
+  const std::vector<LoadTarget> plan = load_plan(shear_test(9e-3, 16e-3, 3, 7));
   for (std::size_t k = 2; k < plan.size(); ++k)
     EXPECT_EQ(continuation_ratio(plan[k - 2], plan[k - 1], plan[k]) > 0, k != 3) << k;
 }
@@ -592,12 +591,7 @@ TEST(Fem, SecantPredictorReachesTheSameStatesInFewerIterations) {
   sp.seed = 4;
   sp.threads = 1;
   const HeightMap road = synthesize(sp).map;
-  ContactTestOptions o;
-  o.shear = true;
-  o.uz = 4e-4;
-  o.ux = 6e-4;
-  o.normal_steps = 2;
-  o.shear_steps = 4;
+  ContactTestOptions o = shear_test(4e-4, 6e-4, 2, 4);
   o.refine = 1;
   o.tolerance = 1e-6;
   o.rms_slope = rms_slope_finite_difference(road, 1);
