@@ -458,7 +458,7 @@ int run_contact(ContactCli c) {
   prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration}, {"cutbacks", c.opt.max_cutbacks}, {"predictor", c.opt.secant_predictor},
+                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration}, {"cutbacks", c.opt.max_cutbacks}, {"predictor", secant_predictor_name(c.opt.secant_predictor)},
                      {"follow_geometry", c.opt.follow_geometry}, {"amg", c.amg}, {"petsc", c.petsc}};
   prov.model =
       "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
@@ -571,11 +571,13 @@ Command add_contact(CLI::App& root) {
                  "fem: a failed load step is retried from the last converged one in two halves, each halvable again, "
                  "down to this many times (0 ... 8; 0: a failed step ends the run)")
       ->capture_default_str();
-  s->add_flag("--predictor,!--no-predictor", c->opt.secant_predictor,
-              "fem: start each step that continues the previous one's direction from the last state extrapolated "
-              "along the last increment (secant predictor; on by default, off under --coarse-start); "
-              "--no-predictor: from the last state itself")
-      ->capture_default_str();
+  s->add_option("--predictor", c->opt.secant_predictor,
+                "fem: which steps that continue the previous one's direction start from the last state extrapolated "
+                "along the last increment (secant predictor): off, press (the normal steps; the default) or all "
+                "(also the shear steps: faster, but it can reach the snap over the asperities earlier; see README); "
+                "off under --coarse-start")
+      ->transform(CLI::CheckedTransformer(secant_predictor_names(), CLI::ignore_case))
+      ->option_text("off|press|all (default press)");
   s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
       ->capture_default_str();
   s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step (fem; spectral shear)")

@@ -53,10 +53,10 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_option("--cutbacks", c.scene.cutbacks,
                "fem: halvings allowed of a failed load step (as `contact --cutbacks`; 0: a failed step fails the run)")
       ->capture_default_str();
-  s.add_flag("--predictor,!--no-predictor", c.scene.predictor,
-             "fem: start each continuing load step from the secant extrapolation of the last two (as `contact "
-             "--predictor`; on by default)")
-      ->capture_default_str();
+  s.add_option("--predictor", c.scene.predictor,
+               "fem: secant predictor for off, press (the default) or all load steps (as `contact --predictor`)")
+      ->transform(CLI::CheckedTransformer(secant_predictor_names(), CLI::ignore_case))
+      ->option_text("off|press|all (default press)");
   s.add_option("--extrapolate", c.scene.extrapolate_every,
                "fem: slow-mode jump every N Signorini iterations (as `contact --extrapolate`; 0: off)")
       ->capture_default_str();

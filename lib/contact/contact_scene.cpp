@@ -198,7 +198,7 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"spectral_tolerance", s.spectral_tolerance},
           {"max_iterations", s.max_iterations},
           {"cutbacks", s.cutbacks},
-          {"predictor", s.predictor},
+          {"predictor", secant_predictor_name(s.predictor)},
           {"max_penetration", s.max_penetration},
           {"facet_normals", s.facet_normals},
           {"facet_band", s.facet_band}};

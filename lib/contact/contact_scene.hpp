@@ -16,6 +16,7 @@
 #include "lib/contact/model_ladder.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/core/height_map.hpp"
+#include "lib/fem/contact_test.hpp"
 #include "lib/spectral/spectral_contact_test.hpp"
 
 namespace wr {
@@ -37,7 +38,7 @@ struct ContactScene {
   double spectral_tolerance = 1e-8;  // Polonsky-Keer error
   int max_iterations = 0;     // per step (0: the model's default)
   int cutbacks = 0;           // FEM: halvings of a failed load step (ContactTestOptions::max_cutbacks)
-  bool predictor = true;      // FEM: secant predictor (ContactTestOptions::secant_predictor)
+  SecantPredictor predictor = SecantPredictor::press;  // FEM: ContactTestOptions::secant_predictor
   // FEM: deepest penetration a converged step may leave, m; 0: 0.1 x the obstacle's rms height.
   // A wet obstacle's rms height is lower than its ground's (pools fill the valleys) while its
   // asperities, where the contact is, are the same: sweeps judge every coverage by the ground's.

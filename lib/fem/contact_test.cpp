@@ -49,6 +49,18 @@ double continuation_ratio(const LoadTarget& prev, const LoadTarget& last, const 
   return dot / aa;
 }
 
+const std::vector<std::pair<std::string, SecantPredictor>>& secant_predictor_names() {
+  static const std::vector<std::pair<std::string, SecantPredictor>> names{
+      {"off", SecantPredictor::off}, {"press", SecantPredictor::press}, {"all", SecantPredictor::all}};
+  return names;
+}
+
+const char* secant_predictor_name(SecantPredictor p) {
+  for (const auto& [name, value] : secant_predictor_names())
+    if (value == p) return name.c_str();
+  return "?";
+}
+
 void check_cutbacks(int cutbacks) {
   if (cutbacks < 0 || cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
 }
@@ -141,7 +153,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   res.face_ny = std::size_t(b.mesh.ny + 1);
   std::vector<LoadTarget> plan = load_plan(opt);
   LoadTarget last{0, 0, 0};             // the last converged state (the unloaded block at first)
-  const bool predict = opt.secant_predictor && !coarse;  // a coarse start chooses the start itself
+  // A coarse start chooses the start itself.
+  const bool predict = opt.secant_predictor != SecantPredictor::off && !coarse;
   const bool keep_states = opt.max_cutbacks > 0 || predict;  // only these look back
   BlockState last_state = keep_states ? block.state() : BlockState{};
   LoadTarget prev{0, 0, 0};             // the converged state before `last` (predictor)
@@ -153,7 +166,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     load.ux = plan[k].ux;
     const double t0 = MPI_Wtime();
     ContactStep st;
-    if (predict && !prev_state.u.empty()) {
+    const bool predict_this = opt.secant_predictor == SecantPredictor::all || plan[k].ux == last.ux;
+    if (predict && predict_this && !prev_state.u.empty()) {
       st.predictor_ratio = continuation_ratio(prev, last, plan[k]);
       if (st.predictor_ratio > 0) block.restore(secant_start(last_state, prev_state, st.predictor_ratio));
     }
