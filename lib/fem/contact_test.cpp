@@ -166,6 +166,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     load.ux = plan[k].ux;
     const double t0 = MPI_Wtime();
     ContactStep st;
+    // `press` predicts only steps without a tangential increment (the normal phase).
     const bool predict_this = opt.secant_predictor == SecantPredictor::all || plan[k].ux == last.ux;
     if (predict && predict_this && !prev_state.u.empty()) {
       st.predictor_ratio = continuation_ratio(prev, last, plan[k]);
