@@ -328,6 +328,7 @@ RoughnessSweepSpec roughness_spec(const RoughnessCli& c) {
     if (c.synth.given("--q0-ratio")) s.base.q0_ratio = o.q0_ratio;
     if (c.synth.given("--q1")) s.base.q1 = o.q1;
     if (c.synth.given("--oversample")) s.base.oversample = o.oversample;
+    if (c.synth.given("--sampling")) s.base.sampling = o.sampling;
     if (c.synth.given("--seed")) s.base.seed = o.seed;
   }
   s.scene = c.common.scene;
@@ -419,11 +420,13 @@ Command add_sweep_roughness(CLI::App& root) {
   s->footer(
       "The thesis's datasets (Table 5.1: 300 x 300 over 3 cm, q0 = 5 qL, H 0.7, h0 0.71 mm unless swept):\n"
       "  A: h0 = 10^-4.14 ... 10^-3.14 m;  B: H = 0.5 ... 0.9;  C: q1/q1hat = 1/8, 1/4, 1/2, 1.\n"
+      "sampled as the thesis did (--sampling thesis: waves up to q1hat = 2 pi/dx, those above the grid's\n"
+      "Nyquist aliased; --sampling nyquist gives band-limited surfaces, whose q1 is q1hat/2).\n"
       "Each value x each realization (seeds seed, seed+1, ...) is synthesized and sheared (Problem A in\n"
       "--steps normal steps, fitted by the quartic of eq. 5.4 for kappa, then Problem B). The table gives\n"
       "mean, 95 % CI and CoV of mu and A/A0 per value, beside the thesis's values (share/thesis/).\n"
       "Surface options (--size, --dx, ...) override the dataset's: a coarse grid makes a quick, cheaper run\n"
-      "(its q1 is then that grid's Nyquist wavenumber). Checkpointed and MPI-distributed as sweep-coverage.\n"
+      "(its q1hat is then 2 pi over that grid's dx). Checkpointed and MPI-distributed as sweep-coverage.\n"
       "Example: wetroad sweep-roughness --dataset A --realizations 10 --uz 9e-3 --ux 3e-3 --refine 2 --out a.h5\n"
       "         wetroad sweep-roughness --dataset B --size 32 --dx 9.375e-4 --realizations 3 --uz 1.5e-3 \\\n"
       "           --ux 3e-3 --out b.h5 --plots b-charts");

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <numbers>
 
 #include <nlohmann/json.hpp>
 
@@ -36,8 +37,9 @@ int run_synth(const SynthCli& c) {
   prov.parameters = {{"nx", p.nx},         {"ny", p.ny},           {"dx", p.dx},
                      {"h0", p.h0},         {"hurst", p.hurst},     {"q0_ratio", p.q0_ratio},
                      {"q1", r.psd.q1},     {"q1_fraction", p.q1_fraction},
-                     {"oversample", p.oversample}, {"seed", p.seed}, {"scene", c.surface.scene}};
-  SynthesisRecord rec{r.psd, r.k_eq44, r.h0_eq44_on_lattice, p.seed, p.oversample};
+                     {"oversample", p.oversample}, {"sampling", sampling_name(p.sampling)},
+                     {"seed", p.seed}, {"scene", c.surface.scene}};
+  SynthesisRecord rec{r.psd, r.k_eq44, r.h0_eq44_on_lattice, p.seed, p.oversample, p.sampling};
   prov.timings = timer.to_json();
   write_surface_file(c.output, r.map, rec, prov.to_json());
   timer.stop();
@@ -59,6 +61,7 @@ int run_synth(const SynthCli& c) {
                             {"h0_eq44_on_lattice", r.h0_eq44_on_lattice},
                             {"eq44_h0_error", eq44_err},
                             {"waves", r.active_waves},
+                            {"sampling", sampling_name(p.sampling)},
                             {"seed", p.seed},
                             {"timings", timer.to_json()}};
   if (!c.json.empty()) write_text_atomically(c.json, summary.dump(2) + "\n");
@@ -69,6 +72,9 @@ int run_synth(const SynthCli& c) {
                 r.psd.q0, r.psd.q1, r.psd.q1_cut, static_cast<unsigned long long>(p.seed));
     std::printf("  plateau k = %.4e m^4 (eq. 4.4 alone: %.4e, would give h0 %+.3f%% on this lattice)\n",
                 r.psd.k, r.k_eq44, 100 * eq44_err);
+    if (p.sampling == Sampling::thesis)
+      std::printf("  thesis sampling: the waves above Nyquist %.4g 1/m are aliased onto the grid (sec. 4.1.1)\n",
+                  std::numbers::pi / p.dx);
     std::printf("%s", timer.table().c_str());
   }
   return 0;
@@ -85,7 +91,8 @@ Command add_synth(CLI::App& root) {
       "The plateau k comes from eq. 4.4 and is then normalised on the lattice, so the measured\n"
       "rms height equals --h0. Same options and seed give a bit-identical map.\n"
       "Example: wetroad synth --scene default -o road.h5\n"
-      "         wetroad synth --size 300 --dx 1e-4 --h0 7.08e-4 --q1 62832 --oversample 2 -o c.h5");
+      "         wetroad synth --size 300 --dx 1e-4 --h0 7.08e-4 --q1 62832 --oversample 2 -o c.h5\n"
+      "         wetroad synth --size 300 --dx 1e-4 --h0 3.05e-4 --sampling thesis -o a.h5   (the thesis's dataset A)");
   s->add_option("-o,--output", c->output, "output HDF5 file (written atomically)")->required();
   add_synth_options(*s, c->surface);
   s->add_option("--json", c->json, "also write a JSON summary of what was generated");

@@ -31,13 +31,21 @@ void add_synth_options(CLI::App& s, SynthOptions& c) {
   c.opts["--hurst"] = s.add_option("--hurst", c.hurst, "Hurst exponent H in (0,1) (default 0.7)");
   c.opts["--q0-ratio"] = s.add_option("--q0-ratio", c.q0_ratio, "roll-off q0 / qL, qL = 2 pi / L (default 5)");
   c.opts["--q1"] = s.add_option("--q1", c.q1,
-                                "short-distance cut-off in 1/m (default: the grid Nyquist pi/dx); above "
-                                "Nyquist it is refused unless --oversample makes the grid fine enough");
+                                "short-distance cut-off in 1/m (default: the grid Nyquist pi/dx; 2 pi/dx under "
+                                "--sampling thesis); above Nyquist it is refused unless --oversample makes the grid "
+                                "fine enough or --sampling thesis aliases it on purpose");
   c.opts["--q1-fraction"] = s.add_option("--q1-fraction", c.q1_fraction,
                                          "low-pass: keep q <= f q1 without renormalising, so h0 drops "
                                          "(thesis dataset C: 1, 1/2, 1/4, 1/8) (default 1)");
   c.opts["--oversample"] = s.add_option("--oversample", c.oversample,
                                         "generate on a grid S times finer (N S points at dx / S) (default 1)");
+  c.opts["--sampling"] =
+      s.add_option("--sampling", c.sampling,
+                   "nyquist (band-limited: no wave above the grid's Nyquist pi/dx) or thesis (the thesis's surfaces, "
+                   "sec. 4.1.1 and Table 5.1: waves up to q1 = 2 pi/dx summed at the grid points, so those above "
+                   "Nyquist alias onto lower wavenumbers; ~8 % steeper lattice at dataset A's spectrum)")
+          ->transform(CLI::CheckedTransformer(sampling_names(), CLI::ignore_case))
+          ->option_text("nyquist|thesis (default nyquist)");
   c.opts["--seed"] = s.add_option("--seed", c.seed, "random seed of the phases (default 1)");
 }
 
@@ -65,6 +73,13 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
       if (s.contains("q1")) p.q1 = s["q1"].get<double>();
       p.q1_fraction = s.value("q1_fraction", p.q1_fraction);
       p.oversample = s.value("oversample", p.oversample);
+      if (s.contains("sampling")) {
+        const std::string name = s["sampling"].get<std::string>();
+        bool known = false;
+        for (const auto& [n, v] : sampling_names())
+          if (n == name) p.sampling = v, known = true;
+        if (!known) throw InputError(path, "\"sampling\" must be nyquist or thesis, not \"" + name + "\"");
+      }
       p.seed = s.value("seed", p.seed);
     } catch (const std::exception& e) {
       throw InputError(path, std::string("bad value in \"surface\": ") + e.what());
@@ -80,6 +95,7 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
   if (c.given("--q1")) p.q1 = c.q1;
   if (c.given("--q1-fraction")) p.q1_fraction = c.q1_fraction;
   if (c.given("--oversample")) p.oversample = c.oversample;
+  if (c.given("--sampling")) p.sampling = c.sampling;
   if (c.given("--seed")) p.seed = c.seed;
   p.threads = c.threads;
   return p;

@@ -16,6 +16,7 @@ struct SynthOptions {
   std::size_t size = 0, nx = 0, ny = 0;
   double dx = 0, h0 = 0, hurst = 0, q0_ratio = 0, q1 = 0, q1_fraction = 0;
   int oversample = 1, threads = 0;
+  Sampling sampling = Sampling::nyquist;
   std::uint64_t seed = 1;
   std::map<std::string, CLI::Option*> opts;
   bool given(const std::string& name) const { return opts.at(name)->count() > 0; }
@@ -23,7 +24,7 @@ struct SynthOptions {
 };
 
 // Registers --scene, --size, --nx, --ny, --dx, --h0, --hurst, --q0-ratio, --q1, --q1-fraction,
-// --oversample and --seed on `app`.
+// --oversample, --sampling and --seed on `app`.
 void add_synth_options(CLI::App& app, SynthOptions& o);
 
 // Scene file first, then every option the user gave. Throws InputError naming the scene file

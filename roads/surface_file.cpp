@@ -30,6 +30,7 @@ void write_surface_file(const std::string& path, const HeightMap& map,
     w.write_attr("/synthesis", "h0_eq44_on_lattice", s.h0_eq44_on_lattice);
     w.write_attr("/synthesis", "seed", static_cast<std::int64_t>(s.seed));
     w.write_attr("/synthesis", "oversample", static_cast<std::int64_t>(s.oversample));
+    w.write_attr("/synthesis", "sampling", std::string(sampling_name(s.sampling)));
   }
   w.write_attr("/", "provenance", provenance.dump());
   w.commit();

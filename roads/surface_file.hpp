@@ -9,6 +9,7 @@
 
 #include "lib/core/height_map.hpp"
 #include "roads/self_affine_psd.hpp"
+#include "roads/synthesize.hpp"
 
 namespace wr {
 
@@ -18,6 +19,7 @@ struct SynthesisRecord {
   double h0_eq44_on_lattice = 0;    // m
   std::uint64_t seed = 0;
   int oversample = 1;
+  Sampling sampling = Sampling::nyquist;
 };
 
 // Writes `map` (and the synthesis record, if any) atomically to `path`.

@@ -55,6 +55,8 @@ std::optional<SynthesisRecord> read_synthesis(const Hdf5Reader& f) {
   s.h0_eq44_on_lattice = get("h0_eq44_on_lattice");
   s.seed = static_cast<std::uint64_t>(get("seed"));
   s.oversample = static_cast<int>(get("oversample"));
+  // Files written before the sampling was recorded are band-limited.
+  if (f.attr_string("/synthesis", "sampling").value_or("nyquist") == "thesis") s.sampling = Sampling::thesis;
   return s;
 }
 

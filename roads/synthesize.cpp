@@ -1,5 +1,6 @@
 #include "roads/synthesize.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -55,9 +56,42 @@ Grid make_grid(const SynthParams& p) {
 
 double nyquist(const Grid& g) { return std::numbers::pi / std::max(g.dx, g.dy); }
 
+// Thesis sampling: the band-limited synthesis on the grid this many times finer, whose
+// Nyquist wavenumber reaches q1.
+int thesis_factor(const SynthParams& p) {
+  const double q1 = p.q1 ? *p.q1 : 2 * std::numbers::pi / p.dx;
+  return std::max(1, static_cast<int>(std::ceil(q1 / (std::numbers::pi / p.dx) - 1e-9)));
+}
+
+SynthParams band_limited_equivalent(const SynthParams& p) {
+  SynthParams fine = p;
+  fine.sampling = Sampling::nyquist;
+  fine.q1 = p.q1 ? *p.q1 : 2 * std::numbers::pi / p.dx;
+  fine.oversample = thesis_factor(p);
+  return fine;
+}
+
 }  // namespace
 
+const std::vector<std::pair<std::string, Sampling>>& sampling_names() {
+  static const std::vector<std::pair<std::string, Sampling>> names{{"nyquist", Sampling::nyquist},
+                                                                   {"thesis", Sampling::thesis}};
+  return names;
+}
+
+const char* sampling_name(Sampling s) { return s == Sampling::thesis ? "thesis" : "nyquist"; }
+
 void validate(const SynthParams& p) {
+  if (p.sampling == Sampling::thesis) {
+    if (p.oversample != 1)
+      throw InputError("--oversample", "not with --sampling thesis, which samples the waves above Nyquist on the "
+                                       "grid itself; use one or the other");
+    if (p.q1 && !(*p.q1 > 0 && std::isfinite(*p.q1))) throw InputError("--q1", "must be a positive wavenumber in 1/m");
+    if (p.dx > 0 && thesis_factor(p) > 64)
+      throw InputError("--q1", "more than 64 times the grid's Nyquist wavenumber under --sampling thesis");
+    validate(band_limited_equivalent(p));
+    return;
+  }
   if (p.nx < 2 || p.ny < 2) throw InputError("--size", "the grid needs at least 2x2 points");
   if (!(p.dx > 0) || !std::isfinite(p.dx)) throw InputError("--dx", "must be a positive length in m");
   if (!(p.h0 > 0) || !std::isfinite(p.h0)) throw InputError("--h0", "must be a positive rms height in m");
@@ -81,7 +115,8 @@ void validate(const SynthParams& p) {
                                    fmt(qn) + " 1/m and cannot be represented on this grid without aliasing;"
                                    " add --oversample " + std::to_string(s) + " (generates " +
                                    std::to_string(p.nx * s) + "x" + std::to_string(p.ny * s) +
-                                   " points at dx = " + fmt(p.dx / s) + " m) or lower --q1");
+                                   " points at dx = " + fmt(p.dx / s) + " m), lower --q1, or alias on"
+                                   " purpose with --sampling thesis");
     }
     if (q1 <= q0) throw InputError("--q1", "q1 must exceed the roll-off q0 = " + fmt(q0) + " 1/m");
   } else if (qn <= q0) {
@@ -91,6 +126,21 @@ void validate(const SynthParams& p) {
 
 SynthResult synthesize(const SynthParams& p) {
   validate(p);
+  if (p.sampling == Sampling::thesis) {
+    const SynthParams fine_params = band_limited_equivalent(p);
+    SynthResult r = synthesize(fine_params);
+    const std::size_t s = static_cast<std::size_t>(fine_params.oversample);
+    HeightMap coarse(p.nx, p.ny, p.dx, p.dx);
+    coarse.periodic = true;
+    double sum = 0;
+    for (std::size_t iy = 0; iy < p.ny; ++iy)
+      for (std::size_t ix = 0; ix < p.nx; ++ix) sum += coarse(ix, iy) = r.map(ix * s, iy * s);
+    // Waves on the lattice of multiples of (nx, ny) qL alias onto the mean plane.
+    const double mean = sum / static_cast<double>(p.nx * p.ny);
+    for (double& v : coarse.h) v -= mean;
+    r.map = std::move(coarse);
+    return r;
+  }
   const Grid g = make_grid(p);
   const double q1 = p.q1 ? *p.q1 : nyquist(g);
   const double q0 = p.q0_ratio * g.qL;

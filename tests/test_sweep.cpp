@@ -217,6 +217,7 @@ RoughnessSweepSpec small_roughness_sweep(const std::string& dataset, std::vector
   s.realizations = realizations;
   s.base.nx = s.base.ny = 32;
   s.base.dx = 1e-3;
+  s.base.sampling = Sampling::nyquist;  // band-limited: h0 exact (aliasing keeps it only in expectation)
   s.scene.model = ContactModel::spectral;
   s.scene.uz = 1e-3;
   s.scene.ux = 1e-3;
@@ -233,6 +234,7 @@ TEST(RoughnessSweep, DatasetsAndThesisRows) {
   EXPECT_EQ(a.base.nx, 300u);
   EXPECT_DOUBLE_EQ(a.base.dx, 1e-4);
   EXPECT_DOUBLE_EQ(a.base.q0_ratio, 5.0);
+  EXPECT_EQ(a.base.sampling, Sampling::thesis);  // q1hat = 2 pi / dx, as Table 5.1
   EXPECT_EQ(roughness_dataset("B").values, (std::vector<double>{0.5, 0.6, 0.7, 0.8, 0.9}));
   EXPECT_EQ(roughness_dataset("C").parameter, RoughnessParameter::q1_fraction);
   EXPECT_THROW(roughness_dataset("D"), InputError);

@@ -95,6 +95,67 @@ TEST(Synthesize, Q1AboveNyquistIsRefusedWithOversampleAdvice) {
   EXPECT_DOUBLE_EQ(r.map.dx, 0.5e-4);
 }
 
+// The expected forward-difference slope^2 of a lattice sampled from the waves with
+// |q| <= q_top: each wave keeps its amplitude and, sampled at the grid points, its difference
+// quotient (2/dx) sin(q_x dx / 2), whether it lies below Nyquist or aliases from above (sin^2 is
+// periodic in q_x with period 2 pi / dx). Summed over the wave lattice independently of the
+// synthesizer (its FFT, folding and rescale).
+double expected_fd_slope(const SelfAffinePsd& psd, std::size_t n, double dx, double q_top) {
+  const double qL = 2 * std::numbers::pi / (static_cast<double>(n) * dx);
+  const long reach = static_cast<long>(std::ceil(q_top / qL));
+  double sum = 0;
+  for (long m = -reach; m <= reach; ++m)
+    for (long k = -reach; k <= reach; ++k) {
+      const double q = qL * std::hypot(double(m), double(k));
+      if (q > q_top * (1 + 1e-12)) continue;
+      const double sx = std::sin(m * qL * dx / 2), sy = std::sin(k * qL * dx / 2);
+      sum += psd(q) * qL * qL * 4 / (dx * dx) * (sx * sx + sy * sy);
+    }
+  return std::sqrt(sum);
+}
+
+// The thesis's surfaces (sec. 4.1.1, Table 5.1) carry waves up to q1 = 2 pi/dx evaluated at the
+// lattice points. Their lattice must be steeper than the band-limited one by what aliasing
+// predicts (dataset A's spectrum: +8.5 %), with the same h0; oversampling is refused with it.
+TEST(Synthesize, ThesisSamplingAliasesTheWavesAboveNyquist) {
+  SynthParams p = thesis_params(0.7);
+  p.h0 = 3.05e-4;
+  const SynthResult band = synthesize(p);
+  p.sampling = Sampling::thesis;
+  const SynthResult thesis = synthesize(p);
+  EXPECT_EQ(thesis.map.nx, 300u);
+  EXPECT_DOUBLE_EQ(thesis.map.dx, 1e-4);
+  EXPECT_NEAR(thesis.psd.q1, 2 * std::numbers::pi / p.dx, 1e-9 * thesis.psd.q1);
+  // h0: the aliased waves land on occupied bins with random phases, so the power is exact only
+  // in expectation; the waves above Nyquist hold ~0.3 % of it.
+  EXPECT_NEAR(height_stats(thesis.map).sq / p.h0, 1.0, 0.01);
+  double mean = 0;
+  for (double v : thesis.map.h) mean += v;
+  EXPECT_NEAR(mean / double(thesis.map.h.size()), 0.0, 1e-15);
+  // Slopes against the independent sum; 2 %: the realisation's spread over ~1e5 waves (< 1 %).
+  const double want_band = expected_fd_slope(band.psd, 300, p.dx, std::numbers::pi / p.dx);
+  const double want_thesis = expected_fd_slope(thesis.psd, 300, p.dx, 2 * std::numbers::pi / p.dx);
+  EXPECT_NEAR(rms_slope_finite_difference(band.map, 1) / want_band, 1.0, 0.02);
+  EXPECT_NEAR(rms_slope_finite_difference(thesis.map, 1) / want_thesis, 1.0, 0.02);
+  EXPECT_NEAR(want_thesis / want_band, 1.085, 0.01);
+  // Its prescribed moments are Table 5.3's first row (alpha 88.9), the band-limited surface's
+  // the row q1/q1hat = 1/2 (36.5).
+  SelfAffinePsd cont = thesis.psd;
+  cont.k = thesis.k_eq44;
+  EXPECT_NEAR(cont.alpha(), 88.895, 0.9);
+  cont = band.psd;
+  cont.k = band.k_eq44;
+  EXPECT_NEAR(cont.alpha(), 36.469, 0.4);
+
+  p.oversample = 2;
+  try {
+    synthesize(p);
+    FAIL() << "--oversample with --sampling thesis was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--oversample"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Synthesize, LowPassFractionRemovesPowerAboveTheCut) {
   SynthParams p = thesis_params(0.7);
   p.q1_fraction = 0.25;

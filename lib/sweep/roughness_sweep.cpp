@@ -26,6 +26,7 @@ SynthParams thesis_surface() {
   p.q0_ratio = 5;
   p.h0 = 7.1e-4;
   p.seed = 1;
+  p.sampling = Sampling::thesis;  // Table 5.1's q1hat = 2 pi / dx on the dx lattice (sec. 4.1.1)
   return p;
 }
 
@@ -92,7 +93,7 @@ nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s) {
           {"surface",
            {{"nx", p.nx}, {"ny", p.ny}, {"dx", p.dx}, {"h0", p.h0}, {"hurst", p.hurst}, {"q0_ratio", p.q0_ratio},
             {"q1", p.q1 ? nlohmann::json(*p.q1) : nlohmann::json(nullptr)}, {"q1_fraction", p.q1_fraction},
-            {"oversample", p.oversample}, {"seed", p.seed}}},
+            {"oversample", p.oversample}, {"sampling", sampling_name(p.sampling)}, {"seed", p.seed}}},
           {"scene", contact_scene_json(s.scene)}};
 }
 
