@@ -75,10 +75,9 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
       p.oversample = s.value("oversample", p.oversample);
       if (s.contains("sampling")) {
         const std::string name = s["sampling"].get<std::string>();
-        bool known = false;
-        for (const auto& [n, v] : sampling_names())
-          if (n == name) p.sampling = v, known = true;
-        if (!known) throw InputError(path, "\"sampling\" must be nyquist or thesis, not \"" + name + "\"");
+        const auto sampling = sampling_from_name(name);
+        if (!sampling) throw InputError(path, "\"sampling\" must be nyquist or thesis, not \"" + name + "\"");
+        p.sampling = *sampling;
       }
       p.seed = s.value("seed", p.seed);
     } catch (const std::exception& e) {

@@ -56,7 +56,7 @@ std::optional<SynthesisRecord> read_synthesis(const Hdf5Reader& f) {
   s.seed = static_cast<std::uint64_t>(get("seed"));
   s.oversample = static_cast<int>(get("oversample"));
   // Files written before the sampling was recorded are band-limited.
-  if (f.attr_string("/synthesis", "sampling").value_or("nyquist") == "thesis") s.sampling = Sampling::thesis;
+  s.sampling = sampling_from_name(f.attr_string("/synthesis", "sampling").value_or("nyquist")).value_or(Sampling::nyquist);
   return s;
 }
 

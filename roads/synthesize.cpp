@@ -56,17 +56,18 @@ Grid make_grid(const SynthParams& p) {
 
 double nyquist(const Grid& g) { return std::numbers::pi / std::max(g.dx, g.dy); }
 
-// Thesis sampling: the band-limited synthesis on the grid this many times finer, whose
-// Nyquist wavenumber reaches q1.
+// Thesis sampling: q1 (default 2 pi/dx, eq. 4.1) and the factor of the finer grid whose
+// Nyquist wavenumber reaches it.
+double thesis_q1(const SynthParams& p) { return p.q1 ? *p.q1 : 2 * std::numbers::pi / p.dx; }
+
 int thesis_factor(const SynthParams& p) {
-  const double q1 = p.q1 ? *p.q1 : 2 * std::numbers::pi / p.dx;
-  return std::max(1, static_cast<int>(std::ceil(q1 / (std::numbers::pi / p.dx) - 1e-9)));
+  return std::max(1, static_cast<int>(std::ceil(thesis_q1(p) / (std::numbers::pi / p.dx) - 1e-9)));
 }
 
 SynthParams band_limited_equivalent(const SynthParams& p) {
   SynthParams fine = p;
   fine.sampling = Sampling::nyquist;
-  fine.q1 = p.q1 ? *p.q1 : 2 * std::numbers::pi / p.dx;
+  fine.q1 = thesis_q1(p);
   fine.oversample = thesis_factor(p);
   return fine;
 }
@@ -79,7 +80,17 @@ const std::vector<std::pair<std::string, Sampling>>& sampling_names() {
   return names;
 }
 
-const char* sampling_name(Sampling s) { return s == Sampling::thesis ? "thesis" : "nyquist"; }
+const char* sampling_name(Sampling s) {
+  for (const auto& [name, value] : sampling_names())
+    if (value == s) return name.c_str();
+  return "?";
+}
+
+std::optional<Sampling> sampling_from_name(const std::string& name) {
+  for (const auto& [n, value] : sampling_names())
+    if (n == name) return value;
+  return std::nullopt;
+}
 
 void validate(const SynthParams& p) {
   if (p.sampling == Sampling::thesis) {

@@ -42,6 +42,7 @@ namespace wr {
 enum class Sampling { nyquist, thesis };
 const std::vector<std::pair<std::string, Sampling>>& sampling_names();  // for the CLI's transformer
 const char* sampling_name(Sampling s);
+std::optional<Sampling> sampling_from_name(const std::string& name);  // nullopt: unknown
 
 struct SynthParams {
   std::size_t nx = 300, ny = 300;  // grid points before oversampling
