@@ -1,6 +1,7 @@
 #include "app/synth_options.hpp"
 
 #include <fstream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -76,7 +77,8 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
       if (s.contains("sampling")) {
         const std::string name = s["sampling"].get<std::string>();
         const auto sampling = sampling_from_name(name);
-        if (!sampling) throw InputError(path, "\"sampling\" must be nyquist or thesis, not \"" + name + "\"");
+        // Wrapped with the file's name by the catch below.
+        if (!sampling) throw std::runtime_error("\"sampling\" must be nyquist or thesis, not \"" + name + "\"");
         p.sampling = *sampling;
       }
       p.seed = s.value("seed", p.seed);
