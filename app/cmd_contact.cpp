@@ -459,10 +459,14 @@ int run_contact(ContactCli c) {
                      {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
                      {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
                      {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration}, {"cutbacks", c.opt.max_cutbacks}, {"predictor", secant_predictor_name(c.opt.secant_predictor)},
-                     {"follow_geometry", c.opt.follow_geometry}, {"amg", c.amg}, {"petsc", c.petsc}};
-  prov.model =
-      "fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative Signorini "
-      "(thesis Alg. 1), PDAS + CG/GAMG";
+                     {"follow_geometry", c.opt.follow_geometry}, {"amg", c.amg}, {"petsc", c.petsc},
+                     {"facet_normals", c.opt.facet_normals}, {"facet_band", c.opt.facet_band},
+                     {"block_normals", c.opt.block_normals}};
+  prov.model = std::string("fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative "
+                           "Signorini (thesis Alg. 1), PDAS + CG/GAMG; constraint normal: ") +
+               (c.opt.block_normals > 0 ? "the block's face normal (experimental, not a rigid obstacle's force)"
+                : c.opt.facet_normals   ? "the obstacle facet's"
+                                        : "the obstacle's smooth vertex-normal blend");
   double t_lin = 0, t_rot = 0, t_sol = 0;
   for (const auto& st : r.steps) {
     t_lin += st.wall_linearise;
@@ -605,6 +609,13 @@ Command add_contact(CLI::App& root) {
   s->add_option("--facet-band", c->opt.facet_band,
                 "with --facet-normals: blend into the smooth normal within this barycentric band of the "
                 "triangle edges (0 ... 1; 0: pure facet normals)");
+  s->add_option("--block-normals", c->opt.block_normals,
+                "experimental: constrain each node along the block's own deformed face normal (the thesis's "
+                "reading of sec. 4.2.1) instead of the obstacle's, the normal relaxed by this factor per Signorini "
+                "iteration (0 ... 1; 0: off). Not a physical model of a rigid frictionless obstacle: for comparison "
+                "with the thesis only (README, issue 4)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->excludes("--facet-normals");
   s->add_flag("--trace", c->opt.trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time)");
   return {s, [c] { return run_contact(*c); }};
 }

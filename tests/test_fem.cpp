@@ -67,6 +67,33 @@ TEST(Fem, UniaxialCompressionOnAFlatObstacle) {
   }
 }
 
+// The block-normal constraint (ContactLoad::block_normals, the thesis's reading of sec. 4.2.1)
+// on a flat obstacle: the face stays flat under uniaxial compression, so its own normal is the
+// obstacle's and the exact answer, Fz = E A dz / Lz, must come out of the rays cast along it.
+TEST(Fem, BlockNormalsOnAFlatObstacleGiveUniaxialCompression) {
+  BlockSpec b;
+  b.mesh.nx = b.mesh.ny = 12;
+  b.young = 2.0e6;
+  const double period = b.mesh.lx;
+  const PeriodicObstacle flat(HeightMap(24, 24, period / 24, period / 24));
+  for (double relax : {1.0, 0.5}) {
+    ElasticBlock block(b);
+    ContactLoad load;
+    load.obstacle = &flat;
+    load.block_normals = relax;
+    load.uz = kFlatPress;
+    load.top = TopCondition::frictionless;
+    load.ksp_rtol = 1e-13;
+    load.tolerance = 1e-10;
+    const ContactSolution s = block.solve(load);
+    ASSERT_TRUE(s.converged) << s.message;
+    const double expected = b.young * b.mesh.lx * b.mesh.ly * kFlatPress / b.mesh.lz;
+    EXPECT_NEAR(s.fz / expected, 1.0, 1e-8) << "relaxation " << relax;
+    EXPECT_NEAR(s.fx / expected, 0.0, 1e-8);
+    EXPECT_EQ(s.contact_nodes, s.face_nodes);
+  }
+}
+
 // Partial contact: no node penetrates, and pressing harder presses more area; following the
 // geometry (rays, rotated normals) and the vertical linearisation agree for this gentle cap.
 TEST(Fem, PartialContactOnACapIsAdmissible) {

@@ -149,6 +149,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.progress_every_s = opt.progress_every_s;
   load.facet_normals = opt.facet_normals;
   load.facet_band = opt.facet_band;
+  load.block_normals = opt.block_normals;
   res.face_nx = std::size_t(b.mesh.nx + 1);
   res.face_ny = std::size_t(b.mesh.ny + 1);
   std::vector<LoadTarget> plan = load_plan(opt);

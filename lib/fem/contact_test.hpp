@@ -49,6 +49,7 @@ struct ContactTestOptions {
   double progress_every_s = 0;  // > 0: a progress line at most this often within a step (rank 0)
   bool facet_normals = false;  // constraint normals of the hit triangles instead of the smooth blend
   double facet_band = 0;       // > 0: PeriodicObstacle::banded_facet_normal with this band
+  double block_normals = 0;    // > 0: constrain along the block's normal, relaxed so (ContactLoad)
   std::string vtu_path{};    // write the deformed block of the last step (.vtu), if set
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
   MPI_Comm comm = MPI_COMM_NULL;  // the processes sharing the block (null: PETSC_COMM_WORLD)

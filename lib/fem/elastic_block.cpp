@@ -721,9 +721,17 @@ void ElasticBlock::Impl::linearise(std::vector<FaceNode>& face, const ContactLoa
       f.g = -INFINITY;
       continue;
     }
-    f.normal = !load.facet_normals      ? hit->normal
-               : load.facet_band > 0 ? load.obstacle->banded_facet_normal(hit->point, load.facet_band)
-                                     : load.obstacle->normal(hit->point.x, hit->point.y);
+    if (load.block_normals > 0) {
+      // The virtual plane of sec. 4.2.1: through the hit, orthogonal to the block's normal
+      // (flipped to point out of the obstacle, as N does). Relaxed from the last one used;
+      // a node's first linearisation of the step (no bound yet) takes n_k itself.
+      const Vec3 nk = n * -1.0;
+      f.normal = std::isfinite(f.g) ? (f.normal + (nk - f.normal) * load.block_normals).unit() : nk;
+    } else {
+      f.normal = !load.facet_normals      ? hit->normal
+                 : load.facet_band > 0 ? load.obstacle->banded_facet_normal(hit->point, load.facet_band)
+                                       : load.obstacle->normal(hit->point.x, hit->point.y);
+    }
     f.g = f.normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q, N the constraint normal
   }
   VecRestoreArrayRead(face_u, &fu);

@@ -52,6 +52,13 @@ struct ContactLoad {
   double damping = 0.8;          // alpha_c
   bool facet_normals = false;     // constraint normal: the hit triangle's (true) or the smooth blend
   double facet_band = 0;          // > 0: facet normals blended into the smooth ones near edges
+  // > 0 (experimental): the thesis's reading of sec. 4.2.1, the constraint along the block's own
+  // deformed face normal n_k ("as if the node's obstacle was a plane orthogonal to n_k" through
+  // the ray's hit), not the obstacle's. Recomputed every Signorini iteration and relaxed: the
+  // normal used is N + b (n_k - N), renormalised, b this factor in (0, 1] (1: the thesis's
+  // plain update). The force is then along n_k, which a rigid frictionless obstacle cannot
+  // exert; this exists to measure what that formulation gives (README, issue 4).
+  double block_normals = 0;
   double tolerance = 1e-5;       // relative change of the contact-face displacement
   // m; > 0: a step that meets the tolerance while a face node is deeper in the obstacle goes on
   // iterating, with tighter loose solves, up to kPenetrationRetries times (the caller's
