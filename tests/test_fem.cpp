@@ -28,8 +28,8 @@ namespace {
 
 // The top pushed down kFlatPress (frictionless) onto a flat obstacle, solved to round-off.
 constexpr double kFlatPress = 1e-4;  // m
-ContactSolution press_on_flat(ElasticBlock& block) {
-  ContactLoad load;
+// `load` carries the obstacle and constraint-normal choices (default: the flat z = 0).
+ContactSolution press_on_flat(ElasticBlock& block, ContactLoad load = {}) {
   load.uz = kFlatPress;
   load.top = TopCondition::frictionless;
   load.ksp_rtol = 1e-13;
@@ -81,11 +81,7 @@ TEST(Fem, BlockNormalsOnAFlatObstacleGiveUniaxialCompression) {
     ContactLoad load;
     load.obstacle = &flat;
     load.block_normals = relax;
-    load.uz = kFlatPress;
-    load.top = TopCondition::frictionless;
-    load.ksp_rtol = 1e-13;
-    load.tolerance = 1e-10;
-    const ContactSolution s = block.solve(load);
+    const ContactSolution s = press_on_flat(block, load);
     ASSERT_TRUE(s.converged) << s.message;
     const double expected = b.young * b.mesh.lx * b.mesh.ly * kFlatPress / b.mesh.lz;
     EXPECT_NEAR(s.fz / expected, 1.0, 1e-8) << "relaxation " << relax;
