@@ -7,6 +7,7 @@
 #include "app/print_summary.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/output_set.hpp"
 #include "roads/analyze.hpp"
 #include "roads/surface_import.hpp"
 
@@ -25,6 +26,9 @@ struct AnalyzeCli {
 int run_analyze(const AnalyzeCli& c) {
   if (!(c.mpd.baseline > 0)) throw InputError("--baseline", "must be a positive length in m");
   if (!(c.mpd.lowpass_wavelength >= 0)) throw InputError("--lowpass", "must be >= 0 m (0 switches it off)");
+  OutputSet outputs;
+  outputs.input(c.input);
+  const std::string json_path = outputs.add("--json", c.json), out_path = outputs.add("--out", c.out);
   PhaseTimer io;
   io.start("read");
   TextGridOptions text;
@@ -34,6 +38,7 @@ int run_analyze(const AnalyzeCli& c) {
   text.periodic = c.periodic;
   const LoadedSurface surface = load_surface(c.input, text);
   io.stop();
+  print_load_warnings(surface);  // also under -q: they are about the data
 
   AnalysisOptions opt;
   opt.threads = c.threads;
@@ -57,8 +62,9 @@ int run_analyze(const AnalyzeCli& c) {
   nlohmann::json j = report.to_json();
   j["timings"]["read"] = io.seconds("read");
   j["provenance"] = prov.to_json();
-  if (!c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
-  if (!c.out.empty()) write_analysis_file(c.out, report, prov);
+  if (!c.json.empty()) write_text_atomically(json_path, j.dump(2) + "\n");
+  if (!c.out.empty()) write_analysis_file(out_path, report, prov);
+  outputs.commit();
   write.stop();
 
   if (!c.quiet) {

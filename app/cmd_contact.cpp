@@ -11,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/launch.hpp"
+#include "app/print_summary.hpp"
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/contact/contact_scene.hpp"
@@ -25,6 +26,7 @@
 #include "lib/spectral/spectral_contact_test.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/io/hdf5_file.hpp"
+#include "lib/io/output_set.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/surface_import.hpp"
 
@@ -42,6 +44,8 @@ struct ContactCli {
   int threads = 0;
   int max_iterations = 0;  // 0: the model's default
   bool quiet = false, vertical = false;
+  // Where --json and --out are written (OutputSet staging paths; committed together).
+  std::string json_stage, out_stage;
 };
 
 nlohmann::json step_json(const ContactStep& s) {
@@ -177,9 +181,9 @@ void print_step_row(int k, const ContactStep& st) {
 // --json and --out (contact-face maps per step), each written atomically.
 void write_contact_files(const ContactCli& c, const nlohmann::json& summary, const std::vector<ContactStep>& steps,
                          std::size_t face_nx, std::size_t face_ny, double face_spacing, const Provenance& prov) {
-  if (!c.json.empty()) write_text_atomically(c.json, summary.dump(2) + "\n");
+  if (!c.json.empty()) write_text_atomically(c.json_stage, summary.dump(2) + "\n");
   if (c.out.empty()) return;
-  Hdf5Writer w(c.out);
+  Hdf5Writer w(c.out_stage);
   w.create_group("/steps");
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const ContactStep& st = steps[k];
@@ -201,7 +205,11 @@ int report_failure(const ContactCli& c, const std::vector<ContactStep>& steps, c
   const ContactStep& last = steps.back();
   std::fprintf(stderr, "wetroad: error: contact step %zu did not converge: %s\n", steps.size(), last.message.c_str());
   std::fprintf(stderr, "  %s:", measure);
-  for (double h : last.history) std::fprintf(stderr, " %.2e", h);
+  // The last iterations tell how it failed; a long history would flood the terminal.
+  constexpr std::size_t kShown = 12;
+  const std::size_t from = last.history.size() > kShown ? last.history.size() - kShown : 0;
+  if (from > 0) std::fprintf(stderr, " (%zu earlier) ...", from);
+  for (std::size_t i = from; i < last.history.size(); ++i) std::fprintf(stderr, " %.2e", last.history[i]);
   std::fprintf(stderr, "\n  the %zu finished steps are kept%s\n", steps.size() - 1,
                c.json.empty() ? "" : (" in " + c.json + " (status \"failed\")").c_str());
   return 3;
@@ -223,9 +231,9 @@ void warn_if_invalid(ContactModel m, const std::vector<ValidityCheck>& checks) {
 }
 
 // The analytic model: Persson's contact area (erf form, eq. 3.162 / 5.3) at each mean pressure.
-int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactRequest& req, const Validity& validity) {
+int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactRequest& req, const Validity& validity,
+                 OutputSet& outputs) {
   if (!(c.pressure > 0)) throw InputError("--pressure", "the analytic model needs a mean pressure, Pa");
-  if (c.steps < 1) throw InputError("--steps", "must be >= 1");
   if (!c.out.empty()) throw InputError("--out", "the analytic model has no contact maps");
   warn_if_invalid(validity.model, validity.checks);
   const auto t0 = std::chrono::steady_clock::now();
@@ -267,19 +275,16 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
   // The thesis's fits of the same curve (eq. 5.4 quartic, eq. 3.179 YAM): the parameters a
   // Persson curve maps to, comparable with those of the FEM and spectral runs.
   j["area_load_fit"] = area_load_fit_json(steps, talk);
-  if (!c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
+  if (!c.json.empty()) write_text_atomically(c.json_stage, j.dump(2) + "\n");
+  outputs.commit();
   return 0;
 }
 
-// The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.
-int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validity& validity) {
-  if (c.opt.refine < 1 || c.opt.refine > 16) throw InputError("--refine", "must be 1 ... 16");
-  // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
-  LoadedSurface s;
-  s.source = surface.source;
-  s.map = resample_triangulated(surface.map, c.opt.refine);
+// The contact scene the options describe, for `model`: what check_contact_scene validates for
+// every model, and what the spectral model runs.
+ContactScene scene_of(const ContactCli& c, ContactModel model) {
   ContactScene scene;
-  scene.model = ContactModel::spectral;
+  scene.model = model;
   scene.shear = c.problem == "shear";
   scene.uz = c.opt.uz;
   scene.pressure = c.pressure;
@@ -292,10 +297,27 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
   scene.height = c.opt.height;
   scene.thickness = parse_thickness(c.thickness, 0.0);  // 0: the block height
   scene.damping = c.opt.damping;
+  scene.extrapolate_every = c.opt.extrapolate_every;
   scene.tolerance = c.opt.tolerance;
   scene.spectral_tolerance = c.spectral_tol;
   scene.max_iterations = c.max_iterations;
+  scene.cutbacks = c.opt.max_cutbacks;
+  scene.predictor = c.opt.secant_predictor;
+  scene.max_penetration = c.opt.max_penetration;
   scene.threads = c.threads;
+  scene.facet_normals = c.opt.facet_normals;
+  scene.facet_band = c.opt.facet_band;
+  return scene;
+}
+
+// The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.
+int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validity& validity, OutputSet& outputs) {
+  if (c.opt.refine < 1 || c.opt.refine > 16) throw InputError("--refine", "must be 1 ... 16");
+  // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
+  LoadedSurface s;
+  s.source = surface.source;
+  s.map = resample_triangulated(surface.map, c.opt.refine);
+  ContactScene scene = scene_of(c, ContactModel::spectral);
   scene.planning = FftPlanning::measure;  // one run: the machine's fastest plans
   SpectralTestOptions o = spectral_test_options(scene, s.map);
   o.face_maps = !c.out.empty();
@@ -350,6 +372,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
                             {"provenance", prov.to_json()}};
   const ContactStep* peak = add_curve_summaries(j, r.steps, talk, surface.map);
   write_contact_files(c, j, r.steps, r.nx, r.ny, r.spacing, prov);
+  outputs.commit();
   if (r.failed)
     return report_failure(c, r.steps, o.shear ? "relative change per geometry iteration" : "Polonsky-Keer error per iteration");
   if (talk) {
@@ -370,8 +393,21 @@ int run_contact(ContactCli c) {
       throw InputError("--model", e.what());
     }
   }
+  if (c.shear_steps < 0) throw InputError("--shear-steps", "must be >= 1 (0: as --steps)");
+  // Every option checked before the work: the scene's as the sweeps check theirs. Under auto the
+  // model is chosen later; load control (--pressure) then means a model other than the FEM.
+  const ContactModel checked = c.model != "auto" ? model : c.pressure > 0 ? ContactModel::spectral : ContactModel::fem;
+  check_contact_scene(scene_of(c, checked));
+  // Every output checked (and staged) before the work; rank 0 writes them.
+  OutputSet outputs(launch_rank_and_size().first == 0);
+  outputs.input(c.surface);
+  outputs.input(c.wet);
+  c.json_stage = outputs.add("--json", c.json);
+  c.out_stage = outputs.add("--out", c.out);
+  const std::string vtu_stage = outputs.add("--vtu", c.vtu);
   const LoadedSurface s = load_surface(c.wet.empty() ? c.surface : c.wet);
-  if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
+  require_periodic_map(s, "the contact scene repeats the surface");
+  if (launch_rank_and_size().first == 0) print_load_warnings(s);  // also under -q
   ContactRequest req;
   req.shear = c.problem == "shear";
   req.refine = c.opt.refine;
@@ -399,15 +435,15 @@ int run_contact(ContactCli c) {
   }
   Validity validity{model, validity_checks(model, req), {}};
   validity.json = validity_json(model, validity.checks, c.model == "auto" ? "auto" : "user");
-  if (model == ContactModel::analytic) return run_analytic(c, s, req, validity);
-  if (model == ContactModel::spectral) return run_spectral(c, s, validity);
+  if (model != ContactModel::fem && !c.vtu.empty())
+    throw InputError("--vtu", std::string("the ") + model_name(model) + " model has no block to write; --vtu is for fem");
+  if (model == ContactModel::analytic) return run_analytic(c, s, req, validity, outputs);
+  if (model == ContactModel::spectral) return run_spectral(c, s, validity, outputs);
   if (c.pressure > 0) throw InputError("--pressure", "the fem model is displacement-controlled; give --uz");
   if (!(c.opt.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
   if (c.max_iterations > 0) c.opt.max_iterations = c.max_iterations;
   c.opt.shear = c.problem == "shear";
   if (c.opt.shear && c.opt.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
-  check_extrapolation_block(c.opt.extrapolate_every);
-  check_cutbacks(c.opt.max_cutbacks);
   c.opt.amg = parse_amg_hierarchy(c.amg, "--amg");
   c.opt.normal_steps = c.steps;
   c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
@@ -419,8 +455,8 @@ int run_contact(ContactCli c) {
   if (c.opt.max_penetration < 0) c.opt.max_penetration = 0;  // no check
   c.opt.face_maps = !c.out.empty();
   c.opt.progress_every_s = c.quiet ? 0 : 10;
-  std::string vtu_tmp;
-  if (!c.vtu.empty()) c.opt.vtu_path = vtu_tmp = temporary_sibling(c.vtu) + ".vtu";
+  check_fem_options(c.opt);
+  c.opt.vtu_path = vtu_stage;
 
   int argc = 1;
   char name[] = "wetroad";
@@ -440,10 +476,17 @@ int run_contact(ContactCli c) {
                 c.opt.height > 0 ? "custom height" : "cube", c.opt.refine);
   if (talk) print_step_header();
   int k = 0;
-  const ContactTestResult r = run_contact_test(s.map, c.opt, [&](const ContactStep& st) {
-    ++k;
-    if (talk) print_step_row(k, st);
-  });
+  const ContactTestResult r = [&] {
+    try {
+      return run_contact_test(s.map, c.opt, [&](const ContactStep& st) {
+        ++k;
+        if (talk) print_step_row(k, st);
+      });
+    } catch (const PetscFailure& e) {
+      if (!c.petsc.empty() && e.bad_option()) throw InputError("--petsc \"" + c.petsc + "\"", e.what());
+      throw;
+    }
+  }();
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& st : r.steps) steps.push_back(step_json(st));
   if (c.opt.shear && c.opt.follow_geometry) {  // known only now: did the friction settle?
@@ -495,7 +538,8 @@ int run_contact(ContactCli c) {
                       {"provenance", prov.to_json()}};
   const ContactStep* peak = add_curve_summaries(j, r.steps, talk, s.map);
   if (rank == 0) write_contact_files(c, j, r.steps, r.face_nx, r.face_ny, r.face_spacing, prov);
-  if (rank == 0 && !vtu_tmp.empty() && !r.steps.empty()) commit_file(vtu_tmp, c.vtu);
+  if (r.steps.empty()) outputs.discard("--vtu");  // no step: no deformed block to show
+  outputs.commit();
   if (r.failed) return rank == 0 ? report_failure(c, r.steps, "relative change per Signorini iteration") : 3;
   if (talk) {
     std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s), "

@@ -4,9 +4,11 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/print_summary.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/output_set.hpp"
 #include "roads/surface_import.hpp"
 #include "water/rain_fill.hpp"
 #include "water/water_file.hpp"
@@ -50,13 +52,16 @@ nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlo
 
 int run_fill(const FillCli& c) {
   const FillRequest req = make_request(c);
+  OutputSet outputs;
+  outputs.input(c.input);
+  const std::string out_path = outputs.add("--output", c.output), json_path = outputs.add("--json", c.json);
   PhaseTimer timer;
   timer.start("read");
   LoadedSurface s = load_surface(c.input);
+  require_periodic_map(s, "the water module drains periodic tiles");
+  print_load_warnings(s);  // also under -q: they are about the data
   // Back to the input's own levels (only the mean was removed from a periodic map).
   for (double& v : s.map.h) v += s.offset;
-  if (!s.map.periodic)
-    throw InputError(c.input, "not a periodic surface (attribute periodic = 0); the water module drains periodic tiles");
   timer.start("fill");
   FillResult r = fill_water(s.map, req);
   timer.stop();
@@ -100,8 +105,9 @@ int run_fill(const FillCli& c) {
   prov.timings = timings;
   j["provenance"] = prov.to_json();
   timer.start("write");
-  write_water_file(c.output, s.map, w, j, prov.to_json());
-  if (!c.json.empty()) write_text_atomically(c.json, j.dump(2) + "\n");
+  write_water_file(out_path, s.map, w, j, prov.to_json());
+  if (!c.json.empty()) write_text_atomically(json_path, j.dump(2) + "\n");
+  outputs.commit();
   timer.stop();
 
   if (!c.quiet) {

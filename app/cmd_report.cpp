@@ -4,6 +4,7 @@
 
 #include "app/commands.hpp"
 #include "lib/core/errors.hpp"
+#include "lib/io/output_set.hpp"
 #include "reports/sweep_outputs.hpp"
 #include "reports/html_report.hpp"
 
@@ -14,11 +15,22 @@ struct ReportCli {
   std::vector<std::string> sweeps;
   std::string measured, output, title = "wetroad report: wet friction";
   double ifi_a = 0, ifi_b = 0, ifi_c = 0, ifi_tx = 0;
-  CLI::Option* ifi_b_opt = nullptr;
+  CLI::Option *ifi_a_opt = nullptr, *ifi_b_opt = nullptr, *ifi_c_opt = nullptr, *ifi_tx_opt = nullptr;
   bool quiet = false;
 };
 
 int run_report(const ReportCli& c) {
+  // The F60 column needs both device constants; a lone one would be silently dropped.
+  const bool a = c.ifi_a_opt->count() > 0, b = c.ifi_b_opt->count() > 0;
+  if (a != b) throw InputError(a ? "--ifi-a" : "--ifi-b", "the IFI F60 needs both --ifi-a and --ifi-b");
+  if (!b && (c.ifi_c_opt->count() > 0 || c.ifi_tx_opt->count() > 0))
+    throw InputError("--ifi-c", "--ifi-c and --ifi-tx refine the F60 of --ifi-a and --ifi-b; give those too");
+  if ((c.ifi_c_opt->count() > 0) != (c.ifi_tx_opt->count() > 0))
+    throw InputError("--ifi-c", "--ifi-c and --ifi-tx go together (the ribbed-tyre term C Tx)");
+  OutputSet outputs;
+  for (const auto& s : c.sweeps) outputs.input(s);
+  outputs.input(c.measured);
+  const std::string out_path = outputs.add("--output", c.output);
   ReportInput in;
   in.title = c.title;
   for (const auto& s : c.sweeps) in.sweeps.emplace_back(s, read_any_sweep_hdf5(s));
@@ -27,7 +39,8 @@ int run_report(const ReportCli& c) {
     in.measured_path = c.measured;
   }
   if (c.ifi_b_opt->count() > 0) in.ifi = IfiConstants{c.ifi_a, c.ifi_b, c.ifi_c, c.ifi_tx};
-  write_html_report(c.output, in);
+  write_html_report(out_path, in);
+  outputs.commit();
   if (!c.quiet)
     std::printf("wrote %s: %zu sweep(s)%s; open it in any browser (self-contained, offline)\n", c.output.c_str(),
                 in.sweeps.size(), in.measured.empty() ? "" : ", measured skid numbers");
@@ -50,10 +63,10 @@ Command add_report(CLI::App& root) {
       ->check(CLI::ExistingFile);
   s->add_option("--measured", c->measured, "measured skid numbers: CSV site,mpd_mm,sn40r[,speed_kmh]")
       ->check(CLI::ExistingFile);
-  s->add_option("--ifi-a", c->ifi_a, "IFI device constant A (F60 column; needs --ifi-b)");
-  c->ifi_b_opt = s->add_option("--ifi-b", c->ifi_b, "IFI device constant B");
-  s->add_option("--ifi-c", c->ifi_c, "IFI device constant C (ribbed tyre), with --ifi-tx");
-  s->add_option("--ifi-tx", c->ifi_tx, "texture measure Tx for the C term, mm");
+  c->ifi_a_opt = s->add_option("--ifi-a", c->ifi_a, "IFI device constant A (F60 column; needs --ifi-b)");
+  c->ifi_b_opt = s->add_option("--ifi-b", c->ifi_b, "IFI device constant B (with --ifi-a)");
+  c->ifi_c_opt = s->add_option("--ifi-c", c->ifi_c, "IFI device constant C (ribbed tyre), with --ifi-tx");
+  c->ifi_tx_opt = s->add_option("--ifi-tx", c->ifi_tx, "texture measure Tx for the C term, mm");
   s->add_option("--title", c->title, "report title")->capture_default_str();
   s->add_option("-o,--output", c->output, "the HTML file (written atomically)")->required();
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");

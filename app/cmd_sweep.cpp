@@ -11,12 +11,14 @@
 
 #include "app/commands.hpp"
 #include "app/launch.hpp"
+#include "app/print_summary.hpp"
 #include "app/synth_options.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/output_set.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
 #include "lib/sweep/roughness_sweep.hpp"
 #include "lib/sweep/sweep_engine.hpp"
@@ -59,6 +61,10 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
       ->option_text("off|press|all (default press)");
   s.add_option("--extrapolate", c.scene.extrapolate_every,
                "fem: slow-mode jump every N Signorini iterations (as `contact --extrapolate`; 0: off)")
+      ->capture_default_str();
+  s.add_option("--max-penetration", c.scene.max_penetration,
+               "fem: deepest penetration a converged step may leave, m (as `contact --max-penetration`; 0: 0.1 x the "
+               "ground's rms height; negative: no check)")
       ->capture_default_str();
   s.add_flag("--facet-normals", c.scene.facet_normals,
              "fem: constrain contact nodes along the obstacle facet's normal (as `contact --facet-normals`)");
@@ -122,11 +128,15 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   const bool talk = rank == 0 && !c.quiet;
   const auto t0 = std::chrono::steady_clock::now();
+  // Every output checked (and staged) before the first run; rank 0 writes them at the end.
+  OutputSet outputs(rank == 0);
+  if (k.spec.contains("surface") && k.spec["surface"].contains("path")) outputs.input(k.spec["surface"]["path"]);
+  const std::string out_path = outputs.add("--out", c.out), csv_path = outputs.add("--csv", c.csv),
+                    json_path = outputs.add("--json", c.json), plots_dir = outputs.add_directory("--plots", c.plots);
 
-  const SweepCheckpoint cp(c.out + ".runs");
+  SweepCheckpoint cp(c.out + ".runs");
   cp.check(k.spec, c.resume);
-  MPI_Barrier(PETSC_COMM_WORLD);
-  if (rank == 0) cp.start(k.spec);
+  cp.start(k.spec, PETSC_COMM_WORLD);
   const auto before = cp.finished(k.runs);
   std::vector<int> pending;
   for (int i = 0; i < k.runs; ++i)
@@ -171,11 +181,12 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
   nlohmann::json sweep = {{"spec", k.spec},          {"table", table},       {"runs", runs},
                           {"failed_runs", failed_total}, {"checkpoint", cp.dir()}, {"provenance", prov.to_json()}};
   if (k.extend) k.extend(sweep);
-  write_sweep_hdf5(c.out, sweep, *k.layout);
-  if (!c.csv.empty()) write_sweep_csv(c.csv, table, *k.layout);
-  if (!c.json.empty()) write_text_atomically(c.json, sweep.dump(1) + "\n");
+  write_sweep_hdf5(out_path, sweep, *k.layout);
+  if (!c.csv.empty()) write_sweep_csv(csv_path, table, *k.layout);
+  if (!c.json.empty()) write_text_atomically(json_path, sweep.dump(1) + "\n");
   std::vector<std::string> charts;
-  if (!c.plots.empty()) charts = k.plots(c.plots, sweep);
+  if (!c.plots.empty()) charts = k.plots(plots_dir, sweep);
+  outputs.commit();
   if (!c.quiet) {
     k.print(sweep);
     std::printf("  wrote %s%s%s%s%s; checkpoint %s\n", c.out.c_str(), c.csv.empty() ? "" : (", " + c.csv).c_str(),
@@ -224,13 +235,15 @@ struct CoverageCli {
   SynthOptions synth;
   std::vector<double> coverages = {0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
   int count = 0;
+  CLI::Option* count_opt = nullptr;
   double max_coverage = 0.8;
   int realizations = 1, connectivity = 4;
 };
 
 CoverageSweepSpec coverage_spec(const CoverageCli& c) {
   CoverageSweepSpec s;
-  if (c.count > 0) {
+  if (c.count_opt->count() > 0) {
+    if (c.count < 1 || c.count > 1000) throw InputError("--count", "must be 1 ... 1000 (coverages beyond the dry one)");
     if (!(c.max_coverage > 0 && c.max_coverage < 1)) throw InputError("--max-coverage", "must lie in (0, 1)");
     for (int k = 0; k <= c.count; ++k) s.coverages.push_back(c.max_coverage * k / c.count);
   } else {
@@ -242,14 +255,16 @@ CoverageSweepSpec coverage_spec(const CoverageCli& c) {
     throw InputError("--surface", "give either a surface file or synthesis options (--scene, --size, ...), not both");
   if (synthetic) s.synth = resolve_synth_options(c.synth);
   s.surface_path = c.surface;
-  if (!synthetic && !load_surface(c.surface).map.periodic)  // bad files fail here, not in every run
-    throw InputError(c.surface, "not a periodic surface; the contact scene repeats the surface");
+  if (!synthetic) {  // bad files fail here, not in every run
+    const LoadedSurface surface = load_surface(c.surface);
+    require_periodic_map(surface, "the contact scene repeats the surface");
+    if (launch_rank_and_size().first == 0) print_load_warnings(surface);
+  }
   s.scene = c.common.scene;
   s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
   if (c.tiling != "torus" && c.tiling != "3x3") throw InputError("--tiling", "must be torus or 3x3");
   s.tiling = c.tiling == "torus" ? Tiling::torus : Tiling::three_by_three;
   s.connectivity = c.connectivity;
-  if (s.connectivity != 4 && s.connectivity != 8) throw InputError("--connectivity", "must be 4 or 8");
   check_sweep_spec(s);
   return s;
 }
@@ -280,7 +295,7 @@ int run_sweep_coverage(const CoverageCli& c) {
   SweepKind k;
   k.command = "sweep-coverage";
   k.layout = &coverage_layout();
-  k.spec = sweep_spec_json(spec);
+  k.spec = with_surface_digest(sweep_spec_json(spec));
   k.runs = int(keys.size());
   k.headline = "coverage sweep: " + std::to_string(keys.size()) + " runs (" + std::to_string(spec.coverages.size()) +
                " coverages x " + std::to_string(spec.realizations) + " realizations), model " +
@@ -361,7 +376,7 @@ int run_sweep_roughness(const RoughnessCli& c) {
   SweepKind k;
   k.command = "sweep-roughness";
   k.layout = &roughness_layout();
-  k.spec = roughness_spec_json(spec);
+  k.spec = with_surface_digest(roughness_spec_json(spec));
   k.runs = roughness_run_count(spec);
   k.headline = "roughness sweep, dataset " + spec.dataset + ": " + std::to_string(k.runs) + " runs (" +
                std::to_string(spec.values.size()) + " values of " + parameter_name(spec.parameter) + " x " +
@@ -404,7 +419,7 @@ Command add_sweep_coverage(CLI::App& root) {
       ->capture_default_str();
   s->add_option("--coverages", c->coverages, "target water coverages, fractions in [0, 1), ascending (0 = dry)")
       ->capture_default_str();
-  s->add_option("--count", c->count, "instead of --coverages: N+1 coverages evenly from 0 to --max-coverage");
+  c->count_opt = s->add_option("--count", c->count, "instead of --coverages: N+1 coverages evenly from 0 to --max-coverage");
   s->add_option("--max-coverage", c->max_coverage, "largest coverage of --count")->capture_default_str();
   s->add_option("--tiling", c->tiling, "drainage: torus (exact periodic) or 3x3 (the thesis's tiling)")
       ->capture_default_str();

@@ -13,6 +13,7 @@
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/output_set.hpp"
 #include "roads/surface_file.hpp"
 #include "roads/synthesize.hpp"
 
@@ -26,6 +27,9 @@ struct SynthCli {
 };
 
 int run_synth(const SynthCli& c) {
+  OutputSet outputs;
+  if (!c.surface.scene.empty()) outputs.input(scene_path(c.surface.scene));
+  const std::string out_path = outputs.add("--output", c.output), json_path = outputs.add("--json", c.json);
   const SynthParams p = resolve_synth_options(c.surface);
   PhaseTimer timer;
   timer.start("synthesize");
@@ -41,7 +45,7 @@ int run_synth(const SynthCli& c) {
                      {"seed", p.seed}, {"scene", c.surface.scene}};
   SynthesisRecord rec{r.psd, r.k_eq44, r.h0_eq44_on_lattice, p.seed, p.oversample, p.sampling};
   prov.timings = timer.to_json();
-  write_surface_file(c.output, r.map, rec, prov.to_json());
+  write_surface_file(out_path, r.map, rec, prov.to_json());
   timer.stop();
 
   const double eq44_err = r.h0_eq44_on_lattice / p.h0 - 1;
@@ -64,7 +68,8 @@ int run_synth(const SynthCli& c) {
                             {"sampling", sampling_name(p.sampling)},
                             {"seed", p.seed},
                             {"timings", timer.to_json()}};
-  if (!c.json.empty()) write_text_atomically(c.json, summary.dump(2) + "\n");
+  if (!c.json.empty()) write_text_atomically(json_path, summary.dump(2) + "\n");
+  outputs.commit();
   if (!c.quiet) {
     std::printf("wrote %s: %zux%zu surface, dx = %.4g m, L = %.4g m, %zu waves\n", c.output.c_str(),
                 r.map.nx, r.map.ny, r.map.dx, r.map.lx(), r.active_waves);

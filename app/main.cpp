@@ -42,6 +42,9 @@ int main(int argc, char** argv) {
   } catch (const wr::InputError& e) {
     std::cerr << "wetroad: error: " << e.what() << "\n";
     return 2;
+  } catch (const wr::NumericalError& e) {
+    std::cerr << "wetroad: error: " << e.what() << "\n";
+    return 3;
   } catch (const std::bad_alloc&) {
     std::cerr << "wetroad: error: out of memory\n";
     return 2;

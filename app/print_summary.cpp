@@ -109,4 +109,8 @@ std::string format_analysis(const AnalysisReport& r) {
   return out;
 }
 
+void print_load_warnings(const LoadedSurface& s) {
+  for (const auto& w : s.warnings) std::fprintf(stderr, "wetroad: warning: %s: %s\n", s.source.c_str(), w.c_str());
+}
+
 }  // namespace wr::app

@@ -2,10 +2,14 @@
 #include <string>
 
 #include "roads/analyze.hpp"
+#include "roads/surface_import.hpp"
 
 namespace wr::app {
 
 // Human-readable summary of an analysis: measured values, prescribed ones beside them.
 std::string format_analysis(const AnalysisReport& r);
+
+// The loader's warnings on stderr, one line each: "wetroad: warning: FILE: ...".
+void print_load_warnings(const LoadedSurface& s);
 
 }  // namespace wr::app

@@ -1,6 +1,8 @@
 #include "roads/surface_import.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -99,7 +101,8 @@ LoadedSurface load_hdf5(const std::string& path) {
   m.dy = dy;
   m.kind = profile ? HeightMap::Kind::profile : HeightMap::Kind::map;
   check_size(m, path);
-  const double scale = unit_scale(f.attr_string(ds, "unit").value_or("m"), path);
+  // No unit attribute: metres (design.md); one that is present must be read and known.
+  const double scale = unit_scale(f.attr_string(ds, "unit").value_or("m"), path + " (" + ds + " unit)");
   m.periodic = f.attr_double(ds, "periodic").value_or(0.0) != 0.0;
   m.h.resize(cells);
   f.read_doubles(ds, m.h.data(), cells);
@@ -181,10 +184,16 @@ bool looks_like_hdf5(const std::string& path) {
 }  // namespace
 
 double unit_scale(const std::string& unit, const std::string& source) {
-  if (unit == "m" || unit.empty()) return 1.0;
-  if (unit == "mm") return 1e-3;
-  if (unit == "um" || unit == "µm" || unit == "micron") return 1e-6;
-  if (unit == "nm") return 1e-9;
+  // Writers differ in case and in the micro sign (U+00B5 or Greek mu U+03BC); nothing else is
+  // guessed: an unknown name is refused rather than read as metres.
+  const auto first = unit.find_first_not_of(" \t"), last = unit.find_last_not_of(" \t");
+  std::string u = first == std::string::npos ? "" : unit.substr(first, last - first + 1);
+  for (char& ch : u)
+    if (ch >= 'A' && ch <= 'Z') ch = char(ch - 'A' + 'a');
+  if (u == "m" || u == "meter" || u == "metre") return 1.0;
+  if (u == "mm") return 1e-3;
+  if (u == "um" || u == "\u00b5m" || u == "\u03bcm" || u == "micron") return 1e-6;
+  if (u == "nm") return 1e-9;
   throw InputError(source, "unknown height unit '" + unit + "' (expected m, mm, um or nm)");
 }
 
@@ -294,10 +303,43 @@ MeanPlane remove_mean_plane(HeightMap& m, const std::vector<unsigned char>& drop
   return p;
 }
 
+void require_periodic_map(const LoadedSurface& s, const std::string& why) {
+  if (s.map.is_profile())
+    throw InputError(s.source, "a 1-D profile (/profile); " + why + ": give a 2-D height map (/height)");
+  if (!s.map.periodic) throw InputError(s.source, "not a periodic surface (attribute periodic = 0); " + why);
+}
+
+namespace {
+
+// Heights of a texture in metres: the limits beyond which the unit, not the road, is wrong.
+constexpr double kWarnHeight = 0.1, kMaxHeight = 1e3;
+constexpr double kWarnDropouts = 0.1;  // ISO 13473-1 rejects a segment above 10 % dropouts
+
+std::vector<std::string> check_plausible(const LoadedSurface& s) {
+  std::vector<std::string> warnings;
+  const double share = double(s.dropouts) / double(s.map.h.size());
+  if (share > kWarnDropouts)
+    warnings.push_back(num(100 * share) + " % of the samples are dropouts, filled by interpolation: the statistics "
+                       "rest on the remaining " + num(100 * (1 - share)) + " %");
+  double peak = 0;
+  for (double v : s.map.h) peak = std::max(peak, std::abs(v));
+  if (!(peak <= kMaxHeight))
+    throw InputError(s.source, "heights up to " + num(peak) + " m about the mean plane: not a road texture "
+                               "(a unit other than metres? set the 'unit' attribute or --unit)");
+  if (peak > kWarnHeight)
+    warnings.push_back("heights up to " + num(peak) + " m about the mean plane, beyond any road texture: "
+                       "check the unit");
+  return warnings;
+}
+
+}  // namespace
+
 LoadedSurface load_surface(const std::string& path, const TextGridOptions& text) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a file");
+  if (std::ifstream probe(path, std::ios::binary); !probe)
+    throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
   const std::string ext = std::filesystem::path(path).extension().string();
   LoadedSurface s;
   if (looks_like_hdf5(path))
@@ -317,6 +359,7 @@ LoadedSurface load_surface(const std::string& path, const TextGridOptions& text)
   s.offset = p.offset;
   s.tilt_x = p.tilt_x;
   s.tilt_y = p.tilt_y;
+  s.warnings = check_plausible(s);
   return s;
 }
 

@@ -11,7 +11,9 @@
 // its slopes reported; a periodic surface has only its mean level removed (a tilt would break
 // the periodicity, so the fitted "tilt" of one period is texture, not trend). The dropout mask is kept so MPD can apply ISO 13473-1's own rules.
 //
-// Errors (InputError naming the file): missing file, not HDF5 (and not a text grid), no
+// Warnings (LoadedSurface::warnings): more than 10 % dropouts; heights beyond 0.1 m.
+// Errors (InputError naming the file): missing or unreadable file, heights beyond 1 km (metres
+// read from a file in another unit), not HDF5 (and not a text grid), no
 // /height or /profile, wrong rank, missing or non-positive dx, a 1x1 map or a profile under
 // 8 samples, every sample a dropout, a size that does not fit in memory.
 #include <optional>
@@ -39,7 +41,14 @@ struct LoadedSurface {
   std::string source;                  // file path
   std::string format;                  // "hdf5" or "text"
   std::optional<SynthesisRecord> synthesis;
+  // What the caller should tell the user (one line each): a map mostly of dropouts, heights
+  // beyond any road texture (a unit left out).
+  std::vector<std::string> warnings;
 };
+
+// The water module and the contact scene need a 2-D map that repeats: InputError naming the
+// file when `s` is a 1-D profile or not periodic (`why` says what needs it).
+void require_periodic_map(const LoadedSurface& s, const std::string& why);
 
 LoadedSurface load_surface(const std::string& path, const TextGridOptions& text = {});
 

@@ -135,11 +135,28 @@ void validate(const SynthParams& p) {
   }
 }
 
+namespace {
+SynthResult synthesize_unchecked(const SynthParams& p);
+}  // namespace
+
 SynthResult synthesize(const SynthParams& p) {
+  SynthResult r = synthesize_unchecked(p);
+  // Lengths near the ends of double's range pass every option check and still overflow in the
+  // spectrum (qL = 2 pi / L, k ~ h0^2 / qL^2): a surface with NaN or Inf is no surface.
+  bool finite = std::isfinite(r.psd.k) && std::isfinite(r.k_eq44) && std::isfinite(r.h0_eq44_on_lattice);
+  for (double v : r.map.h) finite = finite && std::isfinite(v);
+  if (!finite)
+    throw NumericalError("synth", "the surface came out non-finite (NaN or Inf): h0 " + fmt(p.h0) + " m and dx " +
+                                      fmt(p.dx) + " m are beyond double precision's range for this spectrum");
+  return r;
+}
+
+namespace {
+SynthResult synthesize_unchecked(const SynthParams& p) {
   validate(p);
   if (p.sampling == Sampling::thesis) {
     const SynthParams fine_params = band_limited_equivalent(p);
-    SynthResult r = synthesize(fine_params);
+    SynthResult r = synthesize_unchecked(fine_params);
     const std::size_t s = static_cast<std::size_t>(fine_params.oversample);
     HeightMap coarse(p.nx, p.ny, p.dx, p.dx);
     coarse.periodic = true;
@@ -222,9 +239,9 @@ SynthResult synthesize(const SynthParams& p) {
   }
   spec[0] = 0.0;  // mean plane at zero
 
-
   fft.backward();
   return r;
 }
+}  // namespace
 
 }  // namespace wr

@@ -4,7 +4,7 @@
 # Non-interactive; uses sudo when not root. Safe to run repeatedly.
 set -eu
 PACKAGES="cmake g++ make pkg-config libfftw3-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin \
-libcli11-dev nlohmann-json3-dev libgtest-dev petsc-dev gnuplot-nox librsvg2-bin libxml2-utils"
+libcli11-dev nlohmann-json3-dev libssl-dev libgtest-dev petsc-dev gnuplot-nox librsvg2-bin libxml2-utils"
 
 missing=""
 for p in $PACKAGES; do

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <hdf5.h>
+
 #include "lib/core/errors.hpp"
 #include "roads/surface_file.hpp"
 #include "roads/surface_import.hpp"
@@ -104,6 +106,108 @@ TEST(Import, PeriodicMapsLoseOnlyTheirMean) {
   const MeanPlane p = remove_mean_plane(m, std::vector<unsigned char>(64, 0));
   EXPECT_EQ(p.tilt_x, 0.0);
   EXPECT_NEAR(p.offset, 1.35, 1e-12);
+}
+
+// How a `unit` string attribute reaches /height: the encodings h5py writes (variable length
+// UTF-8, the default for str; fixed-length null-padded for numpy bytes 'S2'; either as a
+// one-element array when given a list) and those C-API writers choose (null-terminated, space
+// padded, ASCII variable length).
+struct UnitEncoding {
+  const char* name;
+  bool variable;
+  H5T_cset_t cset;
+  H5T_str_t pad;
+  std::size_t size;  // fixed length only
+  bool array;        // a one-element array instead of a scalar
+};
+
+// A 4 x 4 periodic map of heights +-1 (in the file's unit) with `unit` written as `e`.
+void write_map_with_unit(const std::string& path, const std::string& unit, const UnitEncoding& e) {
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[2] = {4, 4};
+  const hid_t space = H5Screate_simple(2, dims, nullptr);
+  const hid_t ds = H5Dcreate2(f, "/height", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  double h[16];
+  for (int i = 0; i < 16; ++i) h[i] = ((i + i / 4) % 2) ? 1.0 : -1.0;  // a checkerboard: rms 1 unit
+  H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, h);
+  const double dx = 1e-4;
+  const hid_t scalar = H5Screate(H5S_SCALAR);
+  const hid_t adx = H5Acreate2(ds, "dx", H5T_IEEE_F64LE, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(adx, H5T_NATIVE_DOUBLE, &dx);
+  H5Aclose(adx);
+  const long one = 1;
+  const hid_t aper = H5Acreate2(ds, "periodic", H5T_STD_I64LE, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(aper, H5T_NATIVE_LONG, &one);
+  H5Aclose(aper);
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_cset(type, e.cset);
+  const hsize_t one_elem = 1;
+  const hid_t aspace = e.array ? H5Screate_simple(1, &one_elem, nullptr) : H5Screate(H5S_SCALAR);
+  if (e.variable) {
+    H5Tset_size(type, H5T_VARIABLE);
+    const hid_t a = H5Acreate2(ds, "unit", type, aspace, H5P_DEFAULT, H5P_DEFAULT);
+    const char* p = unit.c_str();
+    H5Awrite(a, type, &p);
+    H5Aclose(a);
+  } else {
+    H5Tset_size(type, e.size);
+    H5Tset_strpad(type, e.pad);
+    std::string buf = unit;
+    buf.resize(e.size, e.pad == H5T_STR_SPACEPAD ? ' ' : '\0');
+    const hid_t a = H5Acreate2(ds, "unit", type, aspace, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, type, buf.data());
+    H5Aclose(a);
+  }
+  H5Sclose(aspace);
+  H5Tclose(type);
+  H5Sclose(scalar);
+  H5Dclose(ds);
+  H5Sclose(space);
+  H5Fclose(f);
+}
+
+double rms(const HeightMap& m) {
+  double s = 0;
+  for (double v : m.h) s += v * v;
+  return std::sqrt(s / double(m.h.size()));
+}
+
+const UnitEncoding kUnitEncodings[] = {
+    {"h5py str (variable, UTF-8)", true, H5T_CSET_UTF8, H5T_STR_NULLTERM, 0, false},
+    {"h5py str in a list (variable, UTF-8, 1-element array)", true, H5T_CSET_UTF8, H5T_STR_NULLTERM, 0, true},
+    {"variable, ASCII", true, H5T_CSET_ASCII, H5T_STR_NULLTERM, 0, false},
+    {"h5py numpy bytes (fixed, null-padded, exact size)", false, H5T_CSET_ASCII, H5T_STR_NULLPAD, 2, false},
+    {"fixed, null-padded, UTF-8, longer than the text", false, H5T_CSET_UTF8, H5T_STR_NULLPAD, 8, false},
+    {"C API (fixed, null-terminated)", false, H5T_CSET_ASCII, H5T_STR_NULLTERM, 3, false},
+    {"fixed, space-padded", false, H5T_CSET_ASCII, H5T_STR_SPACEPAD, 6, false},
+};
+
+TEST(Import, HeightUnitIsReadInEveryStringEncoding) {
+  const std::string path = temp_path("unit.h5");
+  for (const UnitEncoding& e : kUnitEncodings) {
+    write_map_with_unit(path, "mm", e);
+    const LoadedSurface s = load_surface(path);
+    EXPECT_NEAR(rms(s.map), 1e-3, 1e-15) << e.name;  // 1 mm, not 1 m
+  }
+  // The micro sign in UTF-8, as instruments write it.
+  write_map_with_unit(path, "\u00b5m", kUnitEncodings[0]);
+  EXPECT_NEAR(rms(load_surface(path).map), 1e-6, 1e-18);
+  std::filesystem::remove(path);
+}
+
+TEST(Import, UnknownHeightUnitIsRefusedByName) {
+  const std::string path = temp_path("furlong.h5");
+  for (const UnitEncoding& e : {kUnitEncodings[0], kUnitEncodings[5]}) {
+    write_map_with_unit(path, "in", e);
+    try {
+      load_surface(path);
+      FAIL() << e.name;
+    } catch (const InputError& err) {
+      EXPECT_NE(std::string(err.what()).find("unknown height unit 'in'"), std::string::npos) << err.what();
+      EXPECT_NE(std::string(err.what()).find(path), std::string::npos) << err.what();
+    }
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -65,7 +65,9 @@ struct SceneResult {
   double mu_peak = 0, ux_peak = 0, area_at_peak = 0, area_normal = 0, fz_normal = 0;
 };
 
-// Throws InputError naming the option at fault (uz, ux, steps, refine, E, nu, the analytic model).
+// Every scene option at once, before any work: the one validator that `contact` and the sweeps
+// share. Throws InputError naming the option at fault (non-finite or out-of-range values, a
+// shear test asked of the analytic model, step records that cannot fit in memory).
 void check_contact_scene(const ContactScene& s);
 
 // `obstacle` periodic, no NaN. A step that does not converge ends the run: failed, with the

@@ -46,6 +46,12 @@ struct ContactStep {
   std::vector<double> face_pressure, face_gap, face_status;
 };
 
+// A step whose forces, area or friction came out non-finite (NaN, Inf: a load beyond double
+// precision's range, or a solver breakdown) is no result: it is marked not converged with the
+// reason in `message`, so that it ends the run as a failure (exit 3) instead of a number.
+// Returns whether the step was finite.
+bool fail_if_not_finite(ContactStep& step);
+
 // The static friction of a shear test: the converged shear step (ux != 0) with the largest mu;
 // nullptr when there is none.
 const ContactStep* peak_friction(const std::vector<ContactStep>& steps);

@@ -69,20 +69,41 @@ void check_extrapolation_block(int every) {
   if (every < 0 || every == 1) throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
 }
 
+void check_fem_options(const ContactTestOptions& o) {
+  // The scene's own options (uz, ux, steps, refine, E, nu, tolerance, damping) are checked by
+  // check_contact_scene; these are the FEM's.
+  if (!(o.uz > 0 && std::isfinite(o.uz))) throw InputError("--uz", "the normal displacement must be a finite length > 0 m");
+  if (!std::isfinite(o.ux) || (o.shear && !(o.ux > 0))) throw InputError("--ux", "must be a finite length (> 0 m for a shear test)");
+  if (o.refine < 1 || o.refine > 16) throw InputError("--refine", "must be 1 ... 16");
+  if (o.normal_steps < 1 || o.normal_steps > kMaxLoadSteps || (o.shear && (o.shear_steps < 1 || o.shear_steps > kMaxLoadSteps)))
+    throw InputError("--steps", "must be 1 ... " + std::to_string(kMaxLoadSteps) + " per phase");
+  if (!(o.young > 0 && std::isfinite(o.young))) throw InputError("--E", "must be a finite modulus > 0 Pa");
+  if (!(o.poisson > -1 && o.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
+  if (!(o.height >= 0 && std::isfinite(o.height))) throw InputError("--height", "must be a finite length >= 0 m (0: a cube)");
+  if (o.layers_per_level < 1 || o.layers_per_level > 64) throw InputError("--layers", "must be 1 ... 64");
+  if (o.max_coarsenings < 0) throw InputError("--coarsen", "must be >= 0");
+  if (!(o.damping > 0 && o.damping <= 2)) throw InputError("--damping", "must lie in (0, 2]");
+  if (!(o.tolerance > 0 && o.tolerance < 1)) throw InputError("--tol", "must lie in (0, 1)");
+  if (!(o.ksp_rtol > 0 && o.ksp_rtol < 1)) throw InputError("--ksp-rtol", "must lie in (0, 1)");
+  if (std::isnan(o.max_penetration)) throw InputError("--max-penetration", "must be a length in m (negative: no check)");
+  if (o.max_iterations < 1 || o.max_iterations > kMaxIterations)
+    throw InputError("--max-iterations", "must be 1 ... " + std::to_string(kMaxIterations));
+  if (!(o.facet_band >= 0 && o.facet_band <= 1)) throw InputError("--facet-band", "must lie in [0, 1]");
+  if (!(o.block_normals >= 0 && o.block_normals <= 1)) throw InputError("--block-normals", "must lie in [0, 1]");
+  if (o.block_normals > 0 && o.facet_normals) throw InputError("--block-normals", "excludes --facet-normals");
+  check_extrapolation_block(o.extrapolate_every);
+  check_cutbacks(o.max_cutbacks);
+  if (o.max_cutbacks > 0 && o.coarse_refine > 0)
+    throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
+  if (o.coarse_refine < 0 || (o.coarse_refine > 0 && (o.coarse_refine >= o.refine || o.refine % o.coarse_refine)))
+    throw InputError("--coarse-start", "must be 0 (off) or a refinement below --refine that divides it");
+}
+
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
                                    const std::function<void(const ContactStep&)>& on_step) {
   if (!obstacle.periodic) throw InputError("--surface", "the obstacle must be a periodic surface");
-  if (opt.refine < 1 || opt.refine > 16) throw InputError("--refine", "must be 1 ... 16");
-  if (!(opt.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
-  if (!(opt.young > 0)) throw InputError("--E", "must be > 0 Pa");
-  if (!(opt.poisson > -1 && opt.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
+  check_fem_options(opt);
   if (!(opt.rms_slope > 0)) throw InputError("--surface", "the obstacle has no slope (flat surface)");
-  if (opt.layers_per_level < 1) throw InputError("--layers", "must be >= 1");
-  if (opt.max_coarsenings < 0) throw InputError("--coarsen", "must be >= 0");
-  if (opt.normal_steps < 1 || (opt.shear && opt.shear_steps < 1)) throw InputError("--steps", "must be >= 1");
-  check_cutbacks(opt.max_cutbacks);
-  if (opt.max_cutbacks > 0 && opt.coarse_refine > 0)
-    throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
 
   const double t_start = MPI_Wtime();
   ContactTestResult res;
@@ -91,8 +112,6 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   for (double& v : shifted.h) v -= hmax;
   const PeriodicObstacle ob(shifted);
 
-  if (opt.coarse_refine < 0 || (opt.coarse_refine > 0 && (opt.coarse_refine >= opt.refine || opt.refine % opt.coarse_refine)))
-    throw InputError("--coarse-start", "must be 0 (off) or a refinement below --refine that divides it");
   auto block_spec = [&](int refine) {
     BlockSpec b;
     b.mesh.lx = obstacle.lx();
@@ -257,6 +276,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     st.face_pressure = std::move(s.face_pressure);  // maps can be large: move, do not copy
     st.face_gap = std::move(s.face_gap);
     st.face_status = std::move(s.face_status);
+    fail_if_not_finite(st);
     res.steps.push_back(st);
     if (on_step) on_step(st);
     if (!st.converged) {

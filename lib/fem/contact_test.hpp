@@ -103,6 +103,13 @@ struct ContactTestResult {
 
 // --extrapolate's value: 0 (off) or a block of >= 2 Signorini iterations; InputError otherwise.
 void check_extrapolation_block(int every);
+// Load steps per phase and iterations per step allowed: far beyond any useful run, and small
+// enough that the per-step records cannot outgrow the machine's memory.
+constexpr int kMaxLoadSteps = 10000;
+constexpr int kMaxIterations = 1000000;
+// Every FEM option at once (InputError naming the option): the one validator that `contact`
+// and the sweeps' scenes both pass through, before any work.
+void check_fem_options(const ContactTestOptions& opt);
 // --cutbacks' value: 0 ... 8; InputError otherwise.
 void check_cutbacks(int cutbacks);
 

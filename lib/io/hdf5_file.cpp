@@ -50,6 +50,42 @@ H5O_type_t object_type(hid_t file, const std::string& name) {
   return info.type;
 }
 
+// One string value of an attribute or dataset (`obj`), whatever encoding the writer chose:
+// variable length (h5py's default) or fixed length; null-terminated, null-padded or
+// space-padded; ASCII or UTF-8; a scalar or a one-element array. The value is read in the
+// file's own string type (no conversion: HDF5 refuses ASCII <-> UTF-8 conversions, and a
+// null-terminated memory type of the stored size drops the last character of a null-padded
+// string), then the padding is stripped by the file's rule.
+std::string read_string_value(hid_t obj, hid_t type, hid_t space, const std::string& path, const std::string& what) {
+  const bool is_attribute = H5Iget_type(obj) == H5I_ATTR;
+  if (H5Tget_class(type) != H5T_STRING) throw InputError(path, what + " is not a string");
+  if (H5Sget_simple_extent_npoints(space) != 1) throw InputError(path, what + " is not a single string");
+  Handle mem(H5Tcopy(type), H5Tclose);
+  auto read = [&](void* buf) {
+    return is_attribute ? H5Aread(obj, mem.get(), buf) : H5Dread(obj, mem.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
+  };
+  if (H5Tis_variable_str(type) > 0) {
+    char* s = nullptr;
+    if (read(&s) < 0) throw InputError(path, "cannot read " + what);
+    std::string out = s ? s : "";
+    if (s) {
+      // Variable-length data is freed through the same memory type and space it was read with.
+      H5Dvlen_reclaim(mem.get(), space, H5P_DEFAULT, &s);
+    }
+    return out;
+  }
+  const std::size_t n = H5Tget_size(type);
+  std::string out(n, '\0');
+  if (n > 0 && read(out.data()) < 0) throw InputError(path, "cannot read " + what);
+  const H5T_str_t pad = H5Tget_strpad(type);
+  if (pad == H5T_STR_SPACEPAD) {
+    out.erase(out.find_last_not_of(' ') + 1);
+  } else if (const auto nul = out.find('\0'); nul != std::string::npos) {
+    out.resize(nul);  // null-terminated or null-padded: the value ends at the first NUL
+  }
+  return out;
+}
+
 }  // namespace
 
 Hdf5Reader::Hdf5Reader(const std::string& path) : path_(path) {
@@ -104,14 +140,8 @@ std::string Hdf5Reader::read_text(const std::string& dataset) const {
   Handle ds(H5Dopen2(file_, dataset.c_str(), H5P_DEFAULT), H5Dclose);
   if (!ds.ok()) throw InputError(path_, "cannot open dataset " + dataset);
   Handle type(H5Dget_type(ds.get()), H5Tclose);
-  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
-    throw InputError(path_, "dataset " + dataset + " is not a fixed-length string");
-  const std::size_t n = H5Tget_size(type.get());
-  std::string out(n, '\0');
-  if (H5Dread(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    throw InputError(path_, "cannot read dataset " + dataset + " (corrupt or truncated file)");
-  out.resize(out.find('\0') == std::string::npos ? n : out.find('\0'));
-  return out;
+  Handle space(H5Dget_space(ds.get()), H5Sclose);
+  return read_string_value(ds.get(), type.get(), space.get(), path_, "dataset " + dataset);
 }
 
 std::optional<double> Hdf5Reader::attr_double(const std::string& object,
@@ -138,25 +168,10 @@ std::optional<std::string> Hdf5Reader::attr_string(const std::string& object,
   if (!link_exists(file_, object)) return std::nullopt;
   if (H5Aexists_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT) <= 0) return std::nullopt;
   Handle a(H5Aopen_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!a.ok()) throw InputError(path_, "cannot open attribute " + name + " of " + object);
   Handle type(H5Aget_type(a.get()), H5Tclose);
-  if (H5Tget_class(type.get()) != H5T_STRING)
-    throw InputError(path_, "attribute " + name + " of " + object + " is not a string");
-  if (H5Tis_variable_str(type.get()) > 0) {
-    char* s = nullptr;
-    Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
-    H5Tset_size(mem.get(), H5T_VARIABLE);
-    if (H5Aread(a.get(), mem.get(), &s) < 0 || !s) return std::string();
-    std::string out(s);
-    H5free_memory(s);
-    return out;
-  }
-  const std::size_t n = H5Tget_size(type.get());
-  std::string out(n, '\0');
-  Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(mem.get(), n);
-  if (H5Aread(a.get(), mem.get(), out.data()) < 0) return std::string();
-  out.resize(out.find('\0') == std::string::npos ? n : out.find('\0'));
-  return out;
+  Handle space(H5Aget_space(a.get()), H5Sclose);
+  return read_string_value(a.get(), type.get(), space.get(), path_, "attribute " + name + " of " + object);
 }
 
 Hdf5Writer::Hdf5Writer(const std::string& final_path)

@@ -29,8 +29,11 @@ class Hdf5Reader {
   void read_doubles(const std::string& dataset, double* out, std::size_t count) const;
   // Attributes on an object (group or dataset path, "/" for the root).
   std::optional<double> attr_double(const std::string& object, const std::string& name) const;
+  // A string attribute in any encoding (variable or fixed length, any padding, ASCII or UTF-8,
+  // scalar or one-element array); nullopt when absent, InputError when present but unreadable.
   std::optional<std::string> attr_string(const std::string& object, const std::string& name) const;
-  // A scalar string dataset (write_text); throws InputError when absent or not a string.
+  // A scalar string dataset (write_text, or any encoding as attr_string); throws InputError when
+  // absent or not a string.
   std::string read_text(const std::string& dataset) const;
 
  private:

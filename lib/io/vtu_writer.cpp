@@ -1,5 +1,7 @@
 #include "lib/io/vtu_writer.hpp"
 
+#include "lib/core/errors.hpp"
+
 #include <fstream>
 #include <stdexcept>
 
@@ -28,7 +30,7 @@ void write_vtu_file(const std::string& path, const std::vector<double>& points,
     pos += sizeof(std::uint64_t) + blocks[k].bytes;
   }
   std::ofstream f(path, std::ios::binary);
-  if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  if (!f) throw InputError(path, "cannot open for writing");
   f << "<?xml version=\"1.0\"?>\n"
     << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
     << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << points.size() / 3 << "\" NumberOfCells=\"" << types.size()
@@ -47,7 +49,7 @@ void write_vtu_file(const std::string& path, const std::vector<double>& points,
     f.write(static_cast<const char*>(b.data), std::streamsize(b.bytes));
   }
   f << "\n</AppendedData>\n</VTKFile>\n";
-  if (!f) throw std::runtime_error(path + ": write failed");
+  if (!f) throw InputError(path, "write failed (disk full?)");
 }
 
 }  // namespace wr

@@ -1,7 +1,7 @@
 #pragma once
 // VTK XML unstructured grid (.vtu) for ParaView: points (m), cells with VTK type codes, one
 // vector point-data array. Binary appended ("raw") data, little endian, 64-bit headers.
-// Throws std::runtime_error naming `path` when the file cannot be written.
+// Throws InputError naming `path` when the file cannot be written.
 #include <cstdint>
 #include <string>
 #include <vector>

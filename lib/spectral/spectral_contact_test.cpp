@@ -217,6 +217,7 @@ SpectralTestResult run_spectral_contact_test(const HeightMap& obstacle, const Sp
       for (std::size_t i = 0; i < st.face_pressure.size(); ++i) st.face_status[i] = st.face_pressure[i] > 0 ? 1.0 : 0.0;
     }
     st.wall_s = st.wall_solve = seconds_since(ts);
+    fail_if_not_finite(st);
     res.steps.push_back(std::move(st));
     if (on_step) on_step(res.steps.back());
     if (!res.steps.back().converged) {

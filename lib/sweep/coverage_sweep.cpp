@@ -26,6 +26,8 @@ void check_sweep_spec(const CoverageSweepSpec& s) {
   if (s.realizations < 1) throw InputError("--realizations", "must be >= 1");
   if (s.realizations > 1 && !s.synth) throw InputError("--realizations", "only synthetic surfaces have realizations");
   if (!s.synth && s.surface_path.empty()) throw InputError("--surface", "give a surface file or synthesis options");
+  if (s.synth) validate(*s.synth);  // now, not when the first run starts
+  if (s.connectivity != 4 && s.connectivity != 8) throw InputError("--connectivity", "must be 4 or 8");
   check_contact_scene(s.scene);
 }
 
@@ -47,7 +49,8 @@ nlohmann::json sweep_spec_json(const CoverageSweepSpec& s) {
     j["surface"] = {{"synthetic", true}, {"nx", p.nx},   {"ny", p.ny},       {"dx", p.dx},
                     {"h0", p.h0},        {"hurst", p.hurst}, {"q0_ratio", p.q0_ratio},
                     {"q1", p.q1 ? nlohmann::json(*p.q1) : nlohmann::json(nullptr)},
-                    {"q1_fraction", p.q1_fraction}, {"oversample", p.oversample}, {"seed", p.seed}};
+                    {"q1_fraction", p.q1_fraction}, {"oversample", p.oversample},
+                    {"sampling", sampling_name(p.sampling)}, {"seed", p.seed}};
   } else {
     j["surface"] = {{"synthetic", false}, {"path", s.surface_path}};
   }
@@ -68,7 +71,7 @@ void CoverageRunner::load_realization(int r) {
     seed_ = p.seed;
   } else {
     LoadedSurface s = load_surface(spec_.surface_path);
-    if (!s.map.periodic) throw InputError(s.source, "not a periodic surface; the contact scene repeats the surface");
+    require_periodic_map(s, "the contact scene repeats the surface");
     ground_ = std::move(s.map);
     seed_ = 0;
   }

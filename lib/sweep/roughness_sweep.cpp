@@ -78,8 +78,14 @@ void check_roughness_spec(const RoughnessSweepSpec& s) {
   }
   if (s.realizations < 1) throw InputError("--realizations", "must be >= 1");
   check_contact_scene(s.scene);
-  SynthParams p = s.base;
-  validate(p);
+  // Every surface the sweep will synthesize, checked now rather than when its run starts.
+  for (double v : s.values) {
+    SynthParams p = s.base;
+    if (s.parameter == RoughnessParameter::h0) p.h0 = v;
+    if (s.parameter == RoughnessParameter::hurst) p.hurst = v;
+    if (s.parameter == RoughnessParameter::q1_fraction) p.q1_fraction = v;
+    validate(p);
+  }
 }
 
 int roughness_run_count(const RoughnessSweepSpec& s) { return int(s.values.size()) * s.realizations; }

@@ -1,12 +1,20 @@
 #include "lib/sweep/sweep_engine.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 
+#include "lib/core/content_hash.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "wetroad/version.hpp"
@@ -14,17 +22,63 @@
 namespace wr {
 namespace {
 
-std::optional<nlohmann::json> read_json(const std::string& path) {
+constexpr const char* kKeyField = "sweep_key";
+constexpr const char* kChecksumField = "checksum";
+
+enum class Read { absent, corrupt, ok };
+
+Read read_json(const std::string& path, nlohmann::json* out) {
   std::ifstream in(path);
-  if (!in) return std::nullopt;
+  if (!in) return Read::absent;
   try {
-    return nlohmann::json::parse(in);
+    *out = nlohmann::json::parse(in);
+    return Read::ok;
   } catch (const nlohmann::json::exception&) {
-    return std::nullopt;  // writes are atomic, so this is a foreign file: treat the run as not finished
+    return Read::corrupt;
   }
 }
 
+std::string short_value(const nlohmann::json& v) {
+  std::string s = v.dump();
+  return s.size() > 60 ? s.substr(0, 57) + "..." : s;
+}
+
+// The first difference between the checkpointed spec and this one, in words: which option (a
+// JSON path such as scene.uz) or which file changed.
+std::string first_difference(const nlohmann::json& stored, const nlohmann::json& spec) {
+  const nlohmann::json patch = nlohmann::json::diff(stored, spec);
+  if (patch.empty()) return "";
+  const std::string path = patch[0]["path"].get<std::string>();
+  if (path == "/surface/content_sha256")
+    return "the surface file " + spec["surface"].value("path", std::string("?")) +
+           " has other content than when the sweep was checkpointed";
+  std::string name = path.substr(1);
+  std::replace(name.begin(), name.end(), '/', '.');
+  const nlohmann::json::json_pointer ptr(path);
+  const std::string was = stored.contains(ptr) ? short_value(stored[ptr]) : "absent";
+  const std::string now = spec.contains(ptr) ? short_value(spec[ptr]) : "absent";
+  return name + " is " + now + ", was " + was;
+}
+
+// The checksum of a record: SHA-256 of its JSON without the checksum itself.
+std::string record_checksum(nlohmann::json record) {
+  record.erase(kChecksumField);
+  return sha256_hex(record.dump());
+}
+
 }  // namespace
+
+std::string sweep_key(const nlohmann::json& spec) { return sha256_hex(spec.dump() + "\n" + kVersion); }
+
+nlohmann::json with_surface_digest(nlohmann::json spec) {
+  if (spec.contains("surface") && spec["surface"].contains("path"))
+    spec["surface"]["content_sha256"] = sha256_file_hex(spec["surface"]["path"].get<std::string>());
+  return spec;
+}
+
+SweepCheckpoint::~SweepCheckpoint() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
+}
 
 std::string SweepCheckpoint::run_path(int index) const {
   char name[32];
@@ -33,29 +87,81 @@ std::string SweepCheckpoint::run_path(int index) const {
 }
 
 void SweepCheckpoint::check(const nlohmann::json& spec, bool resume) const {
+  const bool exists = std::filesystem::exists(dir_);
   if (!resume) {
-    if (std::filesystem::exists(dir_))
-      throw InputError(dir_, "a checkpoint of an earlier sweep exists: continue it with --resume, or remove it");
+    if (exists) throw InputError(dir_, "a checkpoint of an earlier sweep exists: continue it with --resume, or remove it");
     return;
   }
-  const auto stored = read_json(dir_ + "/sweep.json");
-  if (stored && (*stored)["spec"] != spec)
-    throw InputError(dir_ + "/sweep.json", "--resume with different sweep parameters than the checkpointed sweep");
+  if (!exists) return;  // nothing to resume: a fresh start
+  const std::string sweep_json = dir_ + "/sweep.json";
+  nlohmann::json stored;
+  const Read r = read_json(sweep_json, &stored);
+  if (r != Read::ok || !stored.is_object() || !stored.contains("spec"))
+    throw InputError(sweep_json, std::string(r == Read::absent ? "missing" : "corrupt") +
+                                     ": the checkpointed runs cannot be matched to this sweep; remove " + dir_ +
+                                     " to start again");
+  if (stored.value("version", std::string()) != kVersion)
+    throw InputError(sweep_json, "--resume of a sweep made by wetroad " + stored.value("version", std::string("?")) +
+                                     ", this is " + kVersion + ": runs of two versions would be mixed; remove " +
+                                     dir_ + " to start again");
+  if (stored["spec"] != spec)
+    throw InputError(sweep_json, "--resume with different sweep parameters than the checkpointed sweep: " +
+                                     first_difference(stored["spec"], spec));
 }
 
-void SweepCheckpoint::start(const nlohmann::json& spec) const {
-  std::filesystem::create_directories(dir_);
-  write_text_atomically(dir_ + "/sweep.json", nlohmann::json({{"spec", spec}, {"version", kVersion}}).dump(2) + "\n");
+void SweepCheckpoint::start(const nlohmann::json& spec, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  key_ = sweep_key(spec);
+  std::string error;
+  if (rank == 0) {
+    try {
+      std::error_code ec;
+      std::filesystem::create_directories(dir_, ec);
+      if (ec) throw InputError(dir_, "cannot create the checkpoint directory: " + ec.message());
+      const std::string lock = dir_ + "/lock";
+      lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT, 0644);
+      if (lock_fd_ < 0) throw InputError(lock, std::string("cannot open: ") + std::strerror(errno));
+      // flock: released by the kernel when the process ends, however it ends (no stale lock).
+      if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0)
+        throw InputError(dir_, "another wetroad process is running this sweep (its checkpoint is locked); wait for "
+                               "it, or stop it and --resume");
+      write_text_atomically(dir_ + "/sweep.json",
+                            nlohmann::json({{"spec", spec}, {"version", kVersion}, {"key", key_}}).dump(2) + "\n");
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+  }
+  int length = int(error.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  error.resize(std::size_t(length));
+  if (length > 0) MPI_Bcast(error.data(), length, MPI_CHAR, 0, comm);
+  if (!error.empty()) throw InputError("", error);
 }
 
 std::map<int, nlohmann::json> SweepCheckpoint::finished(int count) const {
   std::map<int, nlohmann::json> done;
-  for (int i = 0; i < count; ++i)
-    if (auto r = read_json(run_path(i)); r && r->value("index", -1) == i) done[i] = std::move(*r);
+  for (int i = 0; i < count; ++i) {
+    nlohmann::json r;
+    const std::string path = run_path(i);
+    const Read got = read_json(path, &r);
+    if (got == Read::absent) continue;
+    // Writes are atomic: a record that does not parse, belongs to another sweep or was edited
+    // did not come from this sweep's runs. Refuse rather than mix or silently redo it.
+    if (got == Read::corrupt || !r.is_object() || r.value("index", -1) != i)
+      throw InputError(path, "not a run record of this sweep (corrupt); remove it to recompute the run");
+    if (r.value(kKeyField, std::string()) != key_)
+      throw InputError(path, "a run of another sweep (its key differs from sweep.json's); remove it to recompute the run");
+    if (r.value(kChecksumField, std::string()) != record_checksum(r))
+      throw InputError(path, "its checksum does not match its content (edited or corrupt); remove it to recompute the run");
+    done[i] = std::move(r);
+  }
   return done;
 }
 
-void SweepCheckpoint::save(int index, const nlohmann::json& record) const {
+void SweepCheckpoint::save(int index, nlohmann::json record) const {
+  record[kKeyField] = key_;
+  record[kChecksumField] = record_checksum(record);
   write_text_atomically(run_path(index), record.dump(1) + "\n");
 }
 

@@ -18,25 +18,45 @@
 
 namespace wr {
 
+// Every run is keyed to the sweep: `spec` holds everything that determines the runs (all
+// options, the surface file's SHA-256, see with_surface_digest), and the key is the SHA-256 of
+// spec and version. Each run record carries the key and a checksum of its own content, so a
+// resume cannot mix runs of two inputs, two option sets, two versions, or an edited record.
 class SweepCheckpoint {
  public:
   explicit SweepCheckpoint(std::string dir) : dir_(std::move(dir)) {}
+  ~SweepCheckpoint();
+  SweepCheckpoint(const SweepCheckpoint&) = delete;
+  SweepCheckpoint& operator=(const SweepCheckpoint&) = delete;
   const std::string& dir() const { return dir_; }
 
   // Throws InputError: without `resume`, when the directory exists (an earlier sweep would be
-  // mixed in); with it, when the stored parameters differ from `spec`. Call on every rank
-  // before start(), so all ranks agree.
+  // mixed in); with it, when sweep.json is missing or corrupt while the directory exists, or
+  // when the stored key differs (the message names the first option or file that changed, or
+  // the version). Call on every rank before start(), so all ranks agree.
   void check(const nlohmann::json& spec, bool resume) const;
-  // Creates the directory and writes sweep.json (rank 0).
-  void start(const nlohmann::json& spec) const;
-  // Finished runs among indices [0, count): index -> record.
+  // Collective over `comm`: rank 0 takes the checkpoint's lock (held until this object dies),
+  // creates the directory and writes sweep.json. Every rank throws InputError when the lock is
+  // held by another process (two processes on one sweep: one runs, the other refuses).
+  void start(const nlohmann::json& spec, MPI_Comm comm);
+  // Finished runs among indices [0, count): index -> record. Throws InputError naming a run
+  // file whose key is another sweep's or whose checksum does not match its content.
   std::map<int, nlohmann::json> finished(int count) const;
-  void save(int index, const nlohmann::json& record) const;
+  // Writes the record with the sweep's key and its checksum (after start()).
+  void save(int index, nlohmann::json record) const;
   std::string run_path(int index) const;
 
  private:
   std::string dir_;
+  std::string key_;   // set by start()
+  int lock_fd_ = -1;  // rank 0, while running
 };
+
+// The SHA-256 key of a sweep: its spec and this build's version.
+std::string sweep_key(const nlohmann::json& spec);
+// `spec` with the content of the surface file it names (spec["surface"]["path"]) added as
+// spec["surface"]["content_sha256"]; unchanged for synthetic surfaces.
+nlohmann::json with_surface_digest(nlohmann::json spec);
 
 struct SweepRunDone {
   int index = 0;

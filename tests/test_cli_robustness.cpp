@@ -1,0 +1,183 @@
+// End-to-end: inputs are never destroyed, outputs appear all together or not at all, absurd
+// sizes and non-finite results are refused, every option is validated before any work.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/cli_fixture.hpp"
+
+namespace {
+
+using namespace wr_test;
+namespace fs = std::filesystem;
+
+class Robust : public Cli {
+ protected:
+  void SetUp() override {
+    Cli::SetUp();
+    ASSERT_EQ(run("synth --size 16 --dx 1.875e-3 --h0 1e-4 --seed 3 -q -o " + path("a.h5")).code, 0);
+  }
+
+  std::string bytes(const std::string& p) const { return slurp(p); }
+
+  // Exit 2, one line on stderr naming `needle`, and the scratch folder exactly as before.
+  void expect_refused(const std::string& args, const std::string& needle) {
+    const std::size_t before = count_entries();
+    const std::string input = bytes(path("a.h5"));
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(count_entries(), before) << args << ": something was written";
+    EXPECT_EQ(bytes(path("a.h5")), input) << args << ": the input changed";
+  }
+
+  // Files and folders, hidden staging files included.
+  std::size_t count_entries() const {
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) n += e.path().filename() != "stdout.txt" && e.path().filename() != "stderr.txt";
+    return n;
+  }
+
+  const std::string kSweep = " --coverages 0 --uz 1e-3 --ux 1e-3 --steps 1 --shear-steps 1 --model spectral -q";
+  const std::string kSpectral = " --model spectral --uz 1e-5 --steps 1 -q";
+};
+
+TEST_F(Robust, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
+  const std::string a = path("a.h5");
+  fs::create_directories(path("sub"));
+  fs::create_symlink(a, path("link.h5"));
+  expect_refused("analyze " + a + " --json " + a, "is an input");
+  expect_refused("analyze " + a + " --out " + path("sub/../a.h5"), "is an input");  // another spelling
+  expect_refused("fill " + a + " --limit -o " + path("link.h5"), "is an input");     // a link to it
+  expect_refused("fill " + path("link.h5") + " --limit -o " + a, "is an input");
+  expect_refused("contact --surface " + a + kSpectral + " --json " + a, "is an input");
+  expect_refused("contact --surface " + a + " --wet " + path("link.h5") + kSpectral + " --out " + a, "is an input");
+  expect_refused("report --sweep " + a + " -o " + a, "is an input");
+  expect_refused("sweep-coverage --surface " + a + kSweep + " --out " + a, "is an input");
+  expect_refused("sweep-coverage --surface " + a + kSweep + " --out " + path("s.h5") + " --csv " + path("./a.h5"),
+                 "is an input");
+  expect_refused("synth --scene " + path("scene.json") + " -o " + path("scene.json"), "is an input");
+  // Two outputs of one command on one file.
+  expect_refused("analyze " + a + " --json " + path("o") + " --out " + path("o"), "is also the output of --json");
+  expect_refused("sweep-coverage --surface " + a + kSweep + " --out " + path("s.h5") + " --json " + path("s.h5"),
+                 "is also the output");
+}
+
+TEST_F(Robust, OutputsAppearAllTogetherOrNotAtAll) {
+  const std::string a = path("a.h5"), missing = path("no-such-dir/x");
+  std::ofstream(path("plain-file")) << "x";
+  expect_refused("analyze " + a + " --json " + path("ok.json") + " --out " + missing, "does not exist");
+  expect_refused("fill " + a + " --limit -o " + path("ok.h5") + " --json " + missing, "does not exist");
+  expect_refused("contact --surface " + a + kSpectral + " --json " + path("ok.json") + " --out " + missing,
+                 "does not exist");
+  expect_refused("contact --surface " + a + " --uz 1e-5 --steps 1 -q --json " + path("ok.json") + " --vtu " + missing,
+                 "does not exist");
+  expect_refused("synth --size 16 -o " + path("ok.h5") + " --json " + path("plain-file/x.json"), "not a directory");
+  expect_refused("report --sweep " + a + " -o " + missing, "does not exist");
+  expect_refused("sweep-coverage --surface " + a + kSweep + " --out " + path("s.h5") + " --plots " +
+                     path("plain-file/charts"),
+                 "--plots");
+  EXPECT_FALSE(fs::exists(path("s.h5.runs"))) << "the sweep started";
+  // A writable set: every output appears, and no staging file is left.
+  const CliRun r = run("sweep-coverage --surface " + a + kSweep + " --out " + path("s.h5") + " --csv " + path("s.csv") +
+                       " --plots " + path("charts"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("s.h5")) && fs::exists(path("s.csv")) && fs::exists(path("charts/mu_ratio.svg")));
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_NE(e.path().filename().string().find(".tmp-"), 0u) << "staging left: " << e.path();
+}
+
+TEST_F(Robust, AbsurdSizesAreRefusedBeforeAllocation) {
+  const std::string a = path("a.h5");
+  expect_refused("contact --surface " + a + " --uz 1e-5 --steps 2000000000", "--steps");
+  expect_refused("contact --surface " + a + kSpectral + " --problem shear --ux 1e-5 --shear-steps 2000000000",
+                 "--steps");
+  expect_refused("contact --surface " + a + " --uz 1e-5 --steps 1 --refine 1000", "--refine");
+  expect_refused("sweep-coverage --surface " + a + kSweep + " --max-iterations 2000000000 --out " + path("s.h5"),
+                 "--max-iterations");
+  expect_refused("synth --size 4000000000 -o " + path("b.h5"), "--size");
+}
+
+TEST_F(Robust, NonFiniteResultsAreErrorsNotFiles) {
+  for (const std::string opt : {"--dx 1e300", "--h0 1e300"}) {
+    const CliRun r = run("synth --size 16 " + opt + " -o " + path("b.h5"));
+    EXPECT_EQ(r.code, 3) << opt << "\n" << r.err;
+    EXPECT_NE(r.err.find("non-finite"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path("b.h5"))) << opt;
+  }
+  const CliRun r = run("contact --surface " + path("a.h5") + " --model spectral --uz 1e300 --steps 4 -q --json " +
+                       path("c.json"));
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("non-finite"), std::string::npos) << r.err;
+  std::ifstream f(path("c.json"));
+  EXPECT_EQ(nlohmann::json::parse(f)["status"], "failed");
+}
+
+TEST_F(Robust, ContactAndSweepsShareOneValidatorRunBeforeAnyWork) {
+  const std::string a = path("a.h5");
+  const std::string fem = "contact --surface " + a + " --uz 1e-5 --steps 1 ";
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"--tol nan", "--tol"},           {"--tol 0", "--tol"},
+      {"--damping nan", "--damping"},   {"--problem shear --ux nan", "--ux"},
+      {"--height -1", "--height"},      {"--max-iterations -1", "--max-iterations"},
+      {"--facet-band 2", "--facet-band"}, {"--ksp-rtol nan", "--ksp-rtol"},
+      {"--max-penetration nan", "--max-penetration"}, {"--E inf", "--E"}};
+  for (const auto& [opt, name] : bad) {
+    expect_refused(fem + opt, name);
+    // The sweeps take the same options and refuse the same values with the same words.
+    if (opt.find("ksp") == std::string::npos && opt.find("problem") == std::string::npos)
+      expect_refused("sweep-coverage --surface " + a + kSweep + " " + opt + " --out " + path("s.h5"), name);
+  }
+  // Synthesis options of a sweep: refused before the sweep starts, with no checkpoint left.
+  expect_refused("sweep-coverage --size 16 --hurst 1.5" + kSweep + " --out " + path("s.h5"), "--hurst");
+  expect_refused("sweep-roughness --dataset B --values 0.5 1.5 --size 16 --uz 1e-3 --ux 1e-3 --out " + path("r.h5"),
+                 "--values");
+  expect_refused("sweep-coverage --surface " + a + kSweep + " --count 0 --out " + path("s.h5"), "--count");
+}
+
+TEST_F(Robust, SmallerDefects) {
+  const std::string a = path("a.h5");
+  // A 1-D profile is not a map the water module or the contact scene can use.
+  make_h5("profile.h5", "/profile", {64}, 1e-4);
+  expect_refused("fill " + path("profile.h5") + " --limit -o " + path("w.h5"), "1-D profile");
+  expect_refused("contact --surface " + path("profile.h5") + kSpectral, "1-D profile");
+  expect_refused("sweep-coverage --surface " + path("profile.h5") + kSweep + " --out " + path("s.h5"), "1-D profile");
+  // Heights far beyond a road's: a unit left out.
+  make_h5("huge.h5", "/height", {8, 8}, 1e-4, true, 1e296);
+  expect_refused("analyze " + path("huge.h5"), "not a road texture");
+  // A map of 99 % dropouts is analysed, with a warning.
+  {
+    const hsize_t dims[2] = {32, 32};
+    make_h5("holes.h5", "/height", {32, 32}, 1e-4, true, NAN);
+    const hid_t f = H5Fopen(path("holes.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t ds = H5Dopen2(f, "/height", H5P_DEFAULT);
+    std::vector<double> h(dims[0] * dims[1], NAN);
+    for (std::size_t i = 0; i < 10; ++i) h[i * 97] = 1e-4 * double(i % 3);
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, h.data());
+    H5Dclose(ds);
+    H5Fclose(f);
+  }
+  CliRun r = run("analyze " + path("holes.h5") + " -q");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("dropouts"), std::string::npos) << r.err;
+  // A bad PETSc option: one line, exit 2 (not PETSc's trace).
+  expect_refused("contact --surface " + a + " --uz 1e-5 --steps 1 -q --petsc \"-ksp_type nonexistent\"", "--petsc");
+  // The IFI F60 needs both device constants.
+  expect_refused("report --sweep " + a + " --ifi-a 0.05 -o " + path("r.html"), "--ifi");
+  // A file that cannot be read is not "not an HDF5 file" (root reads everything: nothing to test).
+  if (::geteuid() != 0) {
+    fs::copy_file(a, path("locked.h5"));
+    fs::permissions(path("locked.h5"), fs::perms::none);
+    expect_refused("analyze " + path("locked.h5"), "cannot read");
+  }
+}
+
+}  // namespace
