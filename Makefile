@@ -3,7 +3,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: all deps build demo test bench validate clean
+.PHONY: all deps build demo test bench validate clean check-asan fuzz
 
 all: build
 
@@ -19,6 +19,34 @@ demo: build
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+
+# The unit and end-to-end tests under AddressSanitizer + UndefinedBehaviorSanitizer (own build
+# folder; any report fails the test that triggered it). Leaks inside Open MPI's and PETSc's start-up
+# are suppressed by name (tests/sanitizers/lsan.supp); the project's own are not.
+ASAN_DIR ?= build-asan
+# Open MPI keeps its plug-ins loaded (disable_dlclose) so that their leaks are named, and the
+# slow unwinder walks through the libraries built without frame pointers.
+SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp:print_suppressions=0:fast_unwind_on_malloc=0 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 OMPI_MCA_memory=^patcher OMPI_MCA_mca_base_component_disable_dlclose=1
+check-asan: deps
+	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWETROAD_SANITIZE=address,undefined >/dev/null
+	@cmake --build $(ASAN_DIR) -j$(JOBS)
+	@cd $(ASAN_DIR) && $(SANITIZER_ENV) ctest --output-on-failure -j$(JOBS)
+
+# libFuzzer on every reader (tests/fuzz/): each target runs FUZZ_SECONDS from the seed corpus in
+# tests/fuzz/seeds/; a crash, hang (> 10 s), sanitizer report or uncaught non-input error fails it.
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 120
+FUZZ_TARGETS = fuzz_height_map fuzz_text_grid fuzz_measured_csv fuzz_scene_json fuzz_checkpoint
+fuzz: deps
+	@scripts/install-deps.sh --fuzz
+	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWETROAD_FUZZ=ON \
+	  -DBUILD_TESTING=OFF >/dev/null
+	@cmake --build $(FUZZ_DIR) -j$(JOBS) --target $(FUZZ_TARGETS)
+	@for t in $(FUZZ_TARGETS); do \
+	  scripts/run-fuzz.sh $(FUZZ_DIR)/bin/$$t tests/fuzz/seeds/$$t $(FUZZ_DIR)/corpus/$$t $(FUZZ_SECONDS) || exit 1; \
+	done
 
 # Benchmarks and long validations: run by hand, results go into issue notes.
 bench: build

@@ -15,6 +15,7 @@
 #include "lib/core/richardson.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/output_set.hpp"
 #include "roads/surface_import.hpp"
 
 namespace wr::app {
@@ -513,6 +514,12 @@ Command add_bench(CLI::App& root) {
   st->add_option("--layers", c->spot_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
   st->add_option("--json", c->json, "write the results as JSON");
   return {b, [c, sp, su, wa, co, he, ss, sh, ka, vs, ac, mc, st] {
+            // Benchmarks write at their end, after minutes: try the outputs first (the writers
+            // then write them atomically, each on its own).
+            OutputSet preflight(false);
+            preflight.input(c->mc_surface);
+            preflight.add("--json", c->json);
+            preflight.add("--plot", c->plot);
             if (st->parsed()) return run_spot(*c);
             if (mc->parsed()) return run_mesh_convergence(*c);
             if (ac->parsed()) return run_accuracy(*c);

@@ -316,7 +316,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
   // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
   LoadedSurface s;
   s.source = surface.source;
-  s.map = resample_triangulated(surface.map, c.opt.refine);
+  s.map = spectral_lattice(surface.map, c.opt.refine);
   ContactScene scene = scene_of(c, ContactModel::spectral);
   scene.planning = FftPlanning::measure;  // one run: the machine's fastest plans
   SpectralTestOptions o = spectral_test_options(scene, s.map);

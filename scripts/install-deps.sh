@@ -2,9 +2,11 @@
 # Installs the Debian packages wetroad builds against (and librsvg2-bin, libxml2-utils for the
 # test that renders the report), only those that are missing.
 # Non-interactive; uses sudo when not root. Safe to run repeatedly.
+# --fuzz: the fuzzing tool chain instead (clang and its libFuzzer runtime; make fuzz).
 set -eu
 PACKAGES="cmake g++ make pkg-config libfftw3-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin \
 libcli11-dev nlohmann-json3-dev libssl-dev libgtest-dev petsc-dev gnuplot-nox librsvg2-bin libxml2-utils"
+[ "${1:-}" = "--fuzz" ] && PACKAGES="clang libclang-rt-14-dev"
 
 missing=""
 for p in $PACKAGES; do

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -37,7 +38,10 @@ class Cli : public ::testing::Test {
 
   CliRun run(const std::string& args) const {
     const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = std::string(WETROAD_BIN) + " " + args + " >" + out + " 2>" + err;
+    // WETROAD_TEST_BIN runs the same checks against another build (e.g. an older one, to show
+    // that a test fails without the fix it guards).
+    const char* other = std::getenv("WETROAD_TEST_BIN");
+    const std::string cmd = std::string(other ? other : WETROAD_BIN) + " " + args + " >" + out + " 2>" + err;
     const int status = std::system(cmd.c_str());
     CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
     fs::remove(out);

@@ -1,5 +1,6 @@
 #include "lib/contact/contact_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -99,7 +100,7 @@ SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms
 }
 
 SceneResult run_spectral(const HeightMap& obstacle, const ContactScene& s) {
-  const HeightMap m = resample_triangulated(obstacle, s.refine);  // the FEM's face lattice
+  const HeightMap m = spectral_lattice(obstacle, s.refine);
   const SpectralTestOptions o = spectral_test_options(s, m);
   const SpectralTestResult t = run_spectral_contact_test(m, o);
   SceneResult r;
@@ -197,6 +198,15 @@ SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap
   o.rms_slope = rms_slope_finite_difference(lattice, s.threads);
   check_spectral_test_options(o);
   return o;
+}
+
+HeightMap spectral_lattice(const HeightMap& obstacle, int refine) {
+  constexpr double kDoublesPerPoint = 24;
+  const std::size_t r = std::size_t(std::max(refine, 1));
+  const std::size_t points = checked_cells(checked_cells(obstacle.nx, r, "--refine"), checked_cells(obstacle.ny, r, "--refine"), "--refine");
+  require_memory(points, sizeof(double), kDoublesPerPoint, "--refine",
+                 "the spectral model's " + std::to_string(obstacle.nx * r) + " x " + std::to_string(obstacle.ny * r) + " grid");
+  return resample_triangulated(obstacle, refine);
 }
 
 double default_max_penetration(const HeightMap& ground, int threads) { return 0.1 * height_stats(ground, threads).sq; }

@@ -87,6 +87,11 @@ nlohmann::json contact_scene_json(const ContactScene& s);
 // ground (the dry surface, also when the obstacle is its wet version; ContactScene::max_penetration).
 double default_max_penetration(const HeightMap& ground, int threads = 1);
 
+// The spectral model's grid: `obstacle` resampled to the FEM's face lattice (obstacle spacing /
+// refine, resample_triangulated), after checking that the solver's working set (about 24 doubles
+// per grid point: maps, FFT buffers, CG vectors) fits this machine's memory (InputError --refine).
+HeightMap spectral_lattice(const HeightMap& obstacle, int refine);
+
 // The spectral model's options for the scene on `lattice` (the obstacle already resampled to
 // the face lattice, resample_triangulated). Throws InputError as check_spectral_test_options.
 SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap& lattice);

@@ -1,0 +1,15 @@
+// libFuzzer: a scene JSON (--scene): its "surface" block resolved and validated as `synth` and
+// the sweeps do before synthesizing.
+#include "app/synth_options.hpp"
+#include "tests/fuzz/fuzz_input.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string path = wr::fuzz::as_file(data, size, "scene.json");
+  CLI::App app;
+  wr::app::SynthOptions opt;
+  wr::app::add_synth_options(app, opt);
+  std::vector<std::string> args = {path, "--scene"};  // CLI11 parses a reversed vector
+  app.parse(args);
+  wr::fuzz::expect_clean([&] { wr::validate(wr::app::resolve_synth_options(opt)); });
+  return 0;
+}
