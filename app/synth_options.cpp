@@ -1,6 +1,9 @@
 #include "app/synth_options.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +16,33 @@ std::string scene_path(const std::string& name) {
   if (name == "default") return std::string(WETROAD_SHARE_DIR) + "/scenes/default-asphalt.json";
   return name;
 }
+
+namespace {
+
+// A whole number of a scene file, in T's range: nlohmann's get<T> casts a float such as 1e29
+// to an integer type unchecked (undefined behaviour); anything but an integer in range is an error.
+template <class T>
+T whole_number(const nlohmann::json& s, const char* key, T fallback) {
+  if (!s.contains(key)) return fallback;
+  const nlohmann::json& v = s[key];
+  const auto out_of_range = [&] { return std::runtime_error(std::string("\"") + key + "\" is out of range"); };
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) throw out_of_range();
+    return static_cast<T>(u);
+  }
+  if (v.is_number_integer()) {
+    const auto i = v.get<std::int64_t>();
+    if (i < 0 && !std::numeric_limits<T>::is_signed) throw out_of_range();
+    if (i < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+        static_cast<std::uint64_t>(std::max<std::int64_t>(i, 0)) > static_cast<std::uint64_t>(std::numeric_limits<T>::max()))
+      throw out_of_range();
+    return static_cast<T>(i);
+  }
+  throw std::runtime_error(std::string("\"") + key + "\" must be a whole number");
+}
+
+}  // namespace
 
 bool SynthOptions::any_given() const {
   for (const auto& [name, opt] : opts)
@@ -62,18 +92,20 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
     } catch (const std::exception& e) {
       throw InputError(path, std::string("not valid JSON: ") + e.what());
     }
+    if (!j.is_object()) throw InputError(path, "a scene file is a JSON object with a \"surface\" block");
     const auto s = j.value("surface", nlohmann::json::object());
+    if (!s.is_object()) throw InputError(path, "\"surface\" must be an object of synthesis options");
     try {
-      if (s.contains("size")) p.nx = p.ny = s["size"].get<std::size_t>();
-      p.nx = s.value("nx", p.nx);
-      p.ny = s.value("ny", p.ny);
+      if (s.contains("size")) p.nx = p.ny = whole_number<std::size_t>(s, "size", 0);
+      p.nx = whole_number(s, "nx", p.nx);
+      p.ny = whole_number(s, "ny", p.ny);
       p.dx = s.value("dx", p.dx);
       p.h0 = s.value("h0", p.h0);
       p.hurst = s.value("hurst", p.hurst);
       p.q0_ratio = s.value("q0_ratio", p.q0_ratio);
       if (s.contains("q1")) p.q1 = s["q1"].get<double>();
       p.q1_fraction = s.value("q1_fraction", p.q1_fraction);
-      p.oversample = s.value("oversample", p.oversample);
+      p.oversample = whole_number(s, "oversample", p.oversample);
       if (s.contains("sampling")) {
         const std::string name = s["sampling"].get<std::string>();
         const auto sampling = sampling_from_name(name);
@@ -81,7 +113,7 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
         if (!sampling) throw std::runtime_error("\"sampling\" must be nyquist or thesis, not \"" + name + "\"");
         p.sampling = *sampling;
       }
-      p.seed = s.value("seed", p.seed);
+      p.seed = whole_number(s, "seed", p.seed);
     } catch (const std::exception& e) {
       throw InputError(path, std::string("bad value in \"surface\": ") + e.what());
     }

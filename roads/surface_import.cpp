@@ -43,7 +43,16 @@ std::optional<SynthesisRecord> read_synthesis(const Hdf5Reader& f) {
   auto get = [&](const char* name) {
     auto v = f.attr_double("/synthesis", name);
     if (!v) throw InputError(f.path(), std::string("/synthesis lacks attribute ") + name);
+    if (!std::isfinite(*v)) throw InputError(f.path(), std::string("/synthesis attribute ") + name + " is not finite");
     return *v;
+  };
+  // A whole number in [lo, hi] (a cast of anything else is undefined behaviour).
+  auto whole = [&](const char* name, double lo, double hi) {
+    const double v = get(name);
+    if (!(v >= lo && v <= hi && v == std::floor(v)))
+      throw InputError(f.path(), std::string("/synthesis attribute ") + name + " is not a whole number in " + num(lo) +
+                                     " ... " + num(hi));
+    return v;
   };
   SynthesisRecord s;
   s.psd.h0 = get("h0");
@@ -55,8 +64,8 @@ std::optional<SynthesisRecord> read_synthesis(const Hdf5Reader& f) {
   s.psd.k = get("plateau_k");
   s.k_eq44 = get("plateau_k_eq44");
   s.h0_eq44_on_lattice = get("h0_eq44_on_lattice");
-  s.seed = static_cast<std::uint64_t>(get("seed"));
-  s.oversample = static_cast<int>(get("oversample"));
+  s.seed = static_cast<std::uint64_t>(whole("seed", 0, 18446744073709549568.0));  // the largest double below 2^64
+  s.oversample = static_cast<int>(whole("oversample", 1, 64));
   // Files written before the sampling was recorded are band-limited.
   s.sampling = sampling_from_name(f.attr_string("/synthesis", "sampling").value_or("nyquist")).value_or(Sampling::nyquist);
   return s;

@@ -60,9 +60,12 @@ double nyquist(const Grid& g) { return std::numbers::pi / std::max(g.dx, g.dy); 
 // Nyquist wavenumber reaches it.
 double thesis_q1(const SynthParams& p) { return p.q1 ? *p.q1 : 2 * std::numbers::pi / p.dx; }
 
-int thesis_factor(const SynthParams& p) {
-  return std::max(1, static_cast<int>(std::ceil(thesis_q1(p) / (std::numbers::pi / p.dx) - 1e-9)));
+// The factor as a double: validate() bounds it (<= 64) before anything casts it to int.
+double thesis_factor_exact(const SynthParams& p) {
+  return std::max(1.0, std::ceil(thesis_q1(p) / (std::numbers::pi / p.dx) - 1e-9));
 }
+
+int thesis_factor(const SynthParams& p) { return static_cast<int>(thesis_factor_exact(p)); }
 
 SynthParams band_limited_equivalent(const SynthParams& p) {
   SynthParams fine = p;
@@ -97,8 +100,9 @@ void validate(const SynthParams& p) {
     if (p.oversample != 1)
       throw InputError("--oversample", "not with --sampling thesis, which samples the waves above Nyquist on the "
                                        "grid itself; use one or the other");
+    if (!(p.dx > 0) || !std::isfinite(p.dx)) throw InputError("--dx", "must be a positive length in m");
     if (p.q1 && !(*p.q1 > 0 && std::isfinite(*p.q1))) throw InputError("--q1", "must be a positive wavenumber in 1/m");
-    if (p.dx > 0 && thesis_factor(p) > 64)
+    if (!(thesis_factor_exact(p) <= 64))
       throw InputError("--q1", "more than 64 times the grid's Nyquist wavenumber under --sampling thesis");
     validate(band_limited_equivalent(p));
     return;

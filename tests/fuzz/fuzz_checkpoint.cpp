@@ -17,7 +17,7 @@ const nlohmann::json& spec() {
 // A started checkpoint whose sweep.json is valid: the run records are what is fuzzed.
 wr::SweepCheckpoint& started() {
   static wr::SweepCheckpoint* cp = [] {
-    const std::string dir = "/tmp/wetroad-fuzz-" + std::to_string(::getpid()) + "/valid.runs";
+    const std::string dir = wr::fuzz::scratch_dir() + "/valid.runs";
     std::filesystem::remove_all(dir);
     auto* c = new wr::SweepCheckpoint(dir);
     c->start(spec(), MPI_COMM_SELF);
@@ -35,7 +35,7 @@ extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // As sweep.json of a checkpoint being resumed.
-  const std::string dir = "/tmp/wetroad-fuzz-" + std::to_string(::getpid()) + "/fuzzed.runs";
+  const std::string dir = wr::fuzz::scratch_dir() + "/fuzzed.runs";
   std::filesystem::create_directories(dir);
   const std::string sweep_json = wr::fuzz::as_file(data, size, "fuzzed.runs/sweep.json");
   wr::fuzz::expect_clean([&] { wr::SweepCheckpoint(dir).check(spec(), true); });

@@ -16,12 +16,21 @@
 
 namespace wr::fuzz {
 
-// `data` written to a file named `name` in this process's scratch folder; returns its path.
+// This process's scratch folder (in memory where the machine has /dev/shm: millions of cases
+// write millions of files), created on first use.
+inline const std::string& scratch_dir() {
+  static const std::string dir = [] {
+    const std::string root = ::access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+    std::string d = root + "/wetroad-fuzz-" + std::to_string(::getpid());
+    if (::mkdir(d.c_str(), 0755) != 0 && errno != EEXIST) __builtin_trap();
+    return d;
+  }();
+  return dir;
+}
+
+// `data` written to a file named `name` in scratch_dir(); returns its path.
 inline std::string as_file(const std::uint8_t* data, std::size_t size, const std::string& name) {
-  const std::string dir = "/tmp/wetroad-fuzz-" + std::to_string(::getpid());
-  static const bool made = [&] { return ::mkdir(dir.c_str(), 0755) == 0 || errno == EEXIST; }();
-  (void)made;
-  const std::string path = dir + "/" + name;
+  const std::string path = scratch_dir() + "/" + name;
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) __builtin_trap();  // the harness itself failed: not a finding about the reader
   if (size > 0) std::fwrite(data, 1, size, f);
