@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/scratch_dir.hpp"
+
 namespace wr_test {
 
 namespace fs = std::filesystem;
@@ -24,17 +26,9 @@ struct CliRun {
   std::string out, err;
 };
 
-class Cli : public ::testing::Test {
+class Cli : public ScratchTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("wetroad-cli-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  Cli() : ScratchTest("wetroad-cli-") {}
 
   CliRun run(const std::string& args) const {
     const std::string out = path("stdout.txt"), err = path("stderr.txt");
@@ -106,7 +100,6 @@ class Cli : public ::testing::Test {
     EXPECT_EQ(count_files(), before) << "an output file appeared";
   }
 
-  fs::path dir_;
 };
 
 }  // namespace wr_test

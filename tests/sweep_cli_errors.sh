@@ -8,17 +8,7 @@ BIN=$1
 W=$2
 rm -rf "$W" && mkdir -p "$W"
 export OMP_NUM_THREADS=1
-expect_error() {  # expect_error NEEDLE ARGS...: exit code 2, NEEDLE in stderr
-  needle=$1
-  shift
-  set +e
-  "$BIN" "$@" 2>"$W/err.txt" >/dev/null
-  rc=$?
-  set -e
-  [ $rc -eq 2 ] || { echo "FAIL: exit $rc for: $*"; cat "$W/err.txt"; exit 1; }
-  grep -q -- "$needle" "$W/err.txt" || { echo "FAIL: no '$needle' in:"; cat "$W/err.txt"; exit 1; }
-  [ "$(wc -l < "$W/err.txt")" -eq 1 ] || { echo "FAIL: not one line:"; cat "$W/err.txt"; exit 1; }
-}
+. "$(dirname "$0")/expect_error.sh"
 expect_error "--dataset" sweep-roughness --dataset Z --uz 1e-3 --ux 1e-3 --out "$W/r.h5"
 expect_error "--surface" sweep-coverage --surface x.h5 --scene default --uz 1e-3 --ux 1e-3 --out "$W/c.h5"
 expect_error "--coverages" sweep-coverage --scene default --size 16 --coverages 0.4 0.2 --uz 1e-3 --ux 1e-3 --out "$W/c.h5"

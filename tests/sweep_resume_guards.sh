@@ -9,17 +9,7 @@ BIN=$1
 W=$2
 rm -rf "$W" && mkdir -p "$W"
 export OMP_NUM_THREADS=1
-expect_error() {  # expect_error NEEDLE ARGS...: exit code 2, NEEDLE in one line of stderr
-  needle=$1
-  shift
-  set +e
-  "$BIN" "$@" 2>"$W/err.txt" >/dev/null
-  rc=$?
-  set -e
-  [ $rc -eq 2 ] || { echo "FAIL: exit $rc for: $*"; cat "$W/err.txt"; exit 1; }
-  grep -q -- "$needle" "$W/err.txt" || { echo "FAIL: no '$needle' in:"; cat "$W/err.txt"; exit 1; }
-  [ "$(wc -l < "$W/err.txt")" -eq 1 ] || { echo "FAIL: not one line:"; cat "$W/err.txt"; exit 1; }
-}
+. "$(dirname "$0")/expect_error.sh"
 RUNS="--coverages 0 0.3 --uz 1e-3 --ux 1e-3 --steps 1 --shear-steps 1 --model spectral -q"
 
 # A surface file whose content changes under the same name.

@@ -9,22 +9,16 @@
 #include "lib/core/errors.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/io/output_set.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace wr {
 namespace {
 
 namespace fs = std::filesystem;
 
-class OutputSetTest : public ::testing::Test {
+class OutputSetTest : public wr_test::ScratchTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("wetroad-outputs-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& n) const { return (dir_ / n).string(); }
+  OutputSetTest() : ScratchTest("wetroad-outputs-") {}
   std::size_t entries() const {
     std::size_t n = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++n;
@@ -36,7 +30,6 @@ class OutputSetTest : public ::testing::Test {
     s << f.rdbuf();
     return s.str();
   }
-  fs::path dir_;
 };
 
 TEST_F(OutputSetTest, NothingAppearsUntilCommitAndEverythingAfter) {

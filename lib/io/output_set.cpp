@@ -76,13 +76,7 @@ std::string OutputSet::add(const std::string& option, const std::string& path) {
   const std::string staged = temporary_sibling(path);
   if (const std::string err = create_empty(staged); !err.empty())
     throw InputError(option + " " + path, why_not_writable(fs::path(path).parent_path().string(), err));
-  if (!writes_) {
-    fs::remove(staged, ec);
-    outputs_.push_back({option, path, path, false});
-    return path;
-  }
-  outputs_.push_back({option, path, staged, false});
-  return staged;
+  return keep({option, path, staged, false});
 }
 
 std::string OutputSet::add_directory(const std::string& option, const std::string& dir) {
@@ -98,13 +92,17 @@ std::string OutputSet::add_directory(const std::string& option, const std::strin
   const std::string staged = temporary_sibling(normal.string());
   if (!fs::create_directory(staged, ec))
     throw InputError(option + " " + dir, why_not_writable(parent.string(), ec.message()));
-  if (!writes_) {
-    fs::remove(staged, ec);
-    outputs_.push_back({option, dir, dir, true});
-    return dir;
+  return keep({option, dir, staged, true});
+}
+
+std::string OutputSet::keep(Entry e) {
+  if (!writes_) {  // the staging only proved the output writable: this process writes nothing
+    std::error_code ec;
+    fs::remove(e.staged, ec);
+    e.staged = e.final_path;
   }
-  outputs_.push_back({option, dir, staged, true});
-  return staged;
+  outputs_.push_back(e);
+  return e.staged;
 }
 
 void OutputSet::discard(const std::string& option) {

@@ -45,6 +45,7 @@ class OutputSet {
     bool directory = false;
   };
   void check_distinct(const std::string& option, const std::string& path) const;
+  std::string keep(Entry e);  // records a staged output; returns the path to write
 
   bool writes_;
   bool committed_ = false;
