@@ -245,5 +245,16 @@ TEST(Import, SynthesisRecordWithOutOfRangeIntegersIsRefused) {
   std::filesystem::remove(path);
 }
 
+// Found by make fuzz: a hole surrounded by heights near the largest double filled itself with
+// Inf (the neighbours' sum overflowed), which never counted as filled: the fill looped forever.
+TEST(Import, DropoutFillNearTheLargestDoubleEnds) {
+  HeightMap m(3, 3, 1, 1);
+  m.periodic = false;
+  for (double& v : m.h) v = 1.5e308;
+  m(1, 1) = NAN;
+  EXPECT_EQ(fill_dropouts(m), 1u);
+  EXPECT_DOUBLE_EQ(m(1, 1), 1.5e308);
+}
+
 }  // namespace
 }  // namespace wr
