@@ -1,0 +1,136 @@
+#include "lib/friction/compound.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include "lib/core/errors.hpp"
+
+namespace wr {
+namespace {
+
+// A positive finite number under `key` of `j` (InputError naming source and key otherwise).
+double positive(const nlohmann::json& j, const char* key, const std::string& source) {
+  if (!j.is_object() || !j.contains(key)) throw InputError(source, std::string("missing key \"") + key + "\"");
+  const nlohmann::json& v = j[key];
+  if (!v.is_number() || !(v.get<double>() > 0) || !std::isfinite(v.get<double>()))
+    throw InputError(source, std::string("\"") + key + "\" must be a positive number");
+  return v.get<double>();
+}
+
+double number(const nlohmann::json& j, const char* key, const std::string& source) {
+  if (!j.is_object() || !j.contains(key)) throw InputError(source, std::string("missing key \"") + key + "\"");
+  const nlohmann::json& v = j[key];
+  if (!v.is_number() || !std::isfinite(v.get<double>()))
+    throw InputError(source, std::string("\"") + key + "\" must be a finite number");
+  return v.get<double>();
+}
+
+std::string text(const nlohmann::json& j, const char* key, const std::string& source) {
+  if (!j.contains(key) || !j[key].is_string()) throw InputError(source, std::string("missing text \"") + key + "\"");
+  return j[key].get<std::string>();
+}
+
+}  // namespace
+
+double Compound::log10_shift(double temperature) const {
+  const double dt = temperature - reference_temperature;
+  if (!(wlf_c2 + dt > 0))
+    throw InputError("--temperature", "the WLF shift has its pole at Tref - C2 = " +
+                                          std::to_string(reference_temperature - wlf_c2) + " C; give a warmer temperature");
+  return -wlf_c1 * dt / (wlf_c2 + dt);
+}
+
+std::complex<double> Compound::modulus_at_reference(double omega) const {
+  std::complex<double> e(e_relaxed, 0.0);
+  for (const PronyTerm& t : terms) {
+    const double x = omega * t.tau;
+    // dE i x / (1 + i x) = dE (x^2 + i x) / (1 + x^2)
+    e += t.de * std::complex<double>(x * x, x) / (1 + x * x);
+  }
+  return e;
+}
+
+std::complex<double> Compound::modulus(double omega, double temperature) const {
+  return modulus_at_reference(omega * std::pow(10.0, log10_shift(temperature)));
+}
+
+double Compound::glassy_modulus() const {
+  double e = e_relaxed;
+  for (const PronyTerm& t : terms) e += t.de;
+  return e;
+}
+
+void check_compound(const Compound& c, const std::string& source) {
+  if (!(c.e_relaxed > 0 && std::isfinite(c.e_relaxed))) throw InputError(source, "prony.e_relaxed_pa must be a positive modulus in Pa");
+  if (c.terms.empty()) throw InputError(source, "prony.terms: give at least one term (a purely elastic rubber has no hysteresis)");
+  for (std::size_t i = 0; i < c.terms.size(); ++i) {
+    const std::string at = "prony.terms[" + std::to_string(i) + "]";
+    if (!(c.terms[i].tau > 0 && std::isfinite(c.terms[i].tau))) throw InputError(source, at + ".tau_s must be a positive time in s");
+    if (!(c.terms[i].de >= 0 && std::isfinite(c.terms[i].de))) throw InputError(source, at + ".de_pa must be a modulus >= 0 Pa");
+  }
+  if (!(c.poisson > -1 && c.poisson <= 0.5)) throw InputError(source, "poisson must lie in (-1, 0.5]");
+  if (!(c.wlf_c1 >= 0 && std::isfinite(c.wlf_c1))) throw InputError(source, "wlf.c1 must be a finite number >= 0");
+  if (!(c.wlf_c2 > 0 && std::isfinite(c.wlf_c2))) throw InputError(source, "wlf.c2_k must be positive (K)");
+  if (!std::isfinite(c.reference_temperature)) throw InputError(source, "reference_temperature_c must be finite");
+  if (c.thermal && !(c.thermal->density > 0 && c.thermal->specific_heat > 0 && c.thermal->conductivity > 0))
+    throw InputError(source, "thermal: density, specific heat and conductivity must be positive");
+}
+
+Compound compound_from_json(const nlohmann::json& j, const std::string& source) {
+  if (!j.is_object()) throw InputError(source, "a compound file is a JSON object");
+  Compound c;
+  c.name = text(j, "name", source);
+  c.source = text(j, "source", source);
+  if (j.contains("synthetic")) {
+    if (!j["synthetic"].is_boolean()) throw InputError(source, "\"synthetic\" must be true or false");
+    c.synthetic = j["synthetic"].get<bool>();
+  }
+  c.reference_temperature = number(j, "reference_temperature_c", source);
+  if (!j.contains("wlf")) throw InputError(source, "missing key \"wlf\"");
+  c.wlf_c1 = number(j["wlf"], "c1", source);
+  c.wlf_c2 = positive(j["wlf"], "c2_k", source);
+  c.poisson = number(j, "poisson", source);
+  if (!j.contains("prony")) throw InputError(source, "missing key \"prony\" (the master curve as a Prony series)");
+  const nlohmann::json& p = j["prony"];
+  c.e_relaxed = positive(p, "e_relaxed_pa", source);
+  if (!p.contains("terms") || !p["terms"].is_array()) throw InputError(source, "prony.terms must be a list");
+  for (const auto& t : p["terms"]) c.terms.push_back({positive(t, "tau_s", source), number(t, "de_pa", source)});
+  if (j.contains("thermal")) {
+    const nlohmann::json& t = j["thermal"];
+    c.thermal = ThermalProperties{positive(t, "density_kg_m3", source), positive(t, "specific_heat_j_kg_k", source),
+                                  positive(t, "conductivity_w_m_k", source)};
+  }
+  check_compound(c, source);
+  return c;
+}
+
+Compound read_compound_json(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open the compound file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path, std::string("not valid JSON: ") + e.what());
+  }
+  return compound_from_json(j, path);
+}
+
+nlohmann::json compound_to_json(const Compound& c) {
+  nlohmann::json terms = nlohmann::json::array();
+  for (const PronyTerm& t : c.terms) terms.push_back({{"tau_s", t.tau}, {"de_pa", t.de}});
+  nlohmann::json j = {{"name", c.name},
+                      {"source", c.source},
+                      {"synthetic", c.synthetic},
+                      {"reference_temperature_c", c.reference_temperature},
+                      {"wlf", {{"c1", c.wlf_c1}, {"c2_k", c.wlf_c2}}},
+                      {"poisson", c.poisson},
+                      {"prony", {{"e_relaxed_pa", c.e_relaxed}, {"terms", terms}}}};
+  if (c.thermal)
+    j["thermal"] = {{"density_kg_m3", c.thermal->density},
+                    {"specific_heat_j_kg_k", c.thermal->specific_heat},
+                    {"conductivity_w_m_k", c.thermal->conductivity}};
+  return j;
+}
+
+}  // namespace wr

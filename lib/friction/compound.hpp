@@ -1,0 +1,65 @@
+#pragma once
+// A rubber compound's linear viscoelasticity: the complex Young's modulus E(omega, T) of a
+// master curve at a reference temperature, as a Prony series (generalized Maxwell model), shifted
+// in frequency by the WLF equation. The input of Persson's hysteresis friction (thesis eq. 3.170).
+//
+// Units: Pa, s, rad/s, degrees Celsius (temperature differences in K).
+//   E(omega, Tref) = E_r + sum_i dE_i * i omega tau_i / (1 + i omega tau_i)
+//   log10 aT = -C1 (T - Tref) / (C2 + T - Tref),  E(omega, T) = E(omega aT, Tref)
+// so E'(0) = E_r (rubbery plateau), E'(inf) = E_r + sum dE_i (glassy), and each term's loss
+// E'' = dE_i omega tau_i / (1 + (omega tau_i)^2) peaks at omega tau_i = 1 with dE_i / 2.
+//
+// File format (JSON):
+//   {"name": "...", "source": "...", "synthetic": false,
+//    "reference_temperature_c": 20, "wlf": {"c1": 8.86, "c2_k": 101.6}, "poisson": 0.5,
+//    "prony": {"e_relaxed_pa": 3e6, "terms": [{"tau_s": 1e-6, "de_pa": 1e8}, ...]},
+//    "thermal": {"density_kg_m3": 1200, "specific_heat_j_kg_k": 1500, "conductivity_w_m_k": 0.25}}
+// "synthetic" and "thermal" are optional (thermal: needed by the flash temperature).
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace wr {
+
+struct PronyTerm {
+  double tau = 0;  // s, > 0
+  double de = 0;   // Pa, >= 0
+};
+
+struct ThermalProperties {
+  double density = 0;        // kg/m^3
+  double specific_heat = 0;  // J/(kg K)
+  double conductivity = 0;   // W/(m K)
+};
+
+struct Compound {
+  std::string name, source;
+  bool synthetic = false;  // not fitted to a measured master curve: say so wherever it appears
+  double reference_temperature = 20;  // deg C
+  double wlf_c1 = 8.86, wlf_c2 = 101.6;  // -, K
+  double poisson = 0.5;
+  double e_relaxed = 0;  // Pa, > 0
+  std::vector<PronyTerm> terms;
+  std::optional<ThermalProperties> thermal;
+
+  // log10 of the WLF shift factor aT at `temperature` (deg C); InputError when the temperature is
+  // at or below Tref - C2, where the WLF equation has its pole.
+  double log10_shift(double temperature) const;
+  // Complex Young's modulus at angular frequency omega >= 0 (rad/s) and `temperature` (deg C).
+  std::complex<double> modulus(double omega, double temperature) const;
+  // The same at the reference temperature (no shift).
+  std::complex<double> modulus_at_reference(double omega) const;
+  double glassy_modulus() const;  // E_r + sum dE_i, Pa
+};
+
+// Every constraint of the file format, InputError(source, "key: problem") on the first broken one.
+void check_compound(const Compound& c, const std::string& source);
+// Reads and checks a compound JSON file (InputError naming the file and the key at fault).
+Compound read_compound_json(const std::string& path);
+Compound compound_from_json(const nlohmann::json& j, const std::string& source);
+nlohmann::json compound_to_json(const Compound& c);
+
+}  // namespace wr
