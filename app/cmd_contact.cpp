@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/contact_output.hpp"
 #include "app/launch.hpp"
 #include "app/print_summary.hpp"
 #include "lib/analytic/area_load_fit.hpp"
@@ -48,41 +49,6 @@ struct ContactCli {
   std::string json_stage, out_stage;
 };
 
-nlohmann::json step_json(const ContactStep& s) {
-  return {{"uz", s.uz},
-          {"ux", s.ux},
-          {"fz", s.fz},
-          {"fx", s.fx},
-          {"fy", s.fy},
-          {"area_fraction", s.area_fraction},
-          {"contact_area", s.contact_area},
-          {"sigma_star", s.sigma_star},
-          {"mu", s.mu},
-          {"separation", s.separation},
-          {"max_penetration", s.max_penetration},
-          {"max_penetration_at", {s.penetration_x, s.penetration_y}},
-          {"nodes_over_max_penetration", s.nodes_over_penetration},
-          {"signorini_iterations", s.signorini_iterations},
-          {"active_set_iterations", s.active_set_iterations},
-          {"linear_iterations", s.linear_iterations},
-          {"extrapolations", s.extrapolations},
-          {"rejected_jumps", s.rejected_jumps},
-          {"failed_attempts", s.failed_attempts},
-          {"predictor_ratio", s.predictor_ratio},
-          {"wall_s", s.wall_s},
-          {"converged", s.converged},
-          {"message", s.message},
-          {"residual_history", s.history},
-          // How much mu still moved at the end (friction_convergence.hpp); null where not measured.
-          {"mu_drift", std::isfinite(s.mu_drift) ? nlohmann::json(s.mu_drift) : nlohmann::json(nullptr)},
-          {"mu_history", s.mu_history},
-          {"coarse_start", s.coarse_iterations > 0
-                               ? nlohmann::json{{"signorini_iterations", s.coarse_iterations},
-                                                {"wall_s", s.coarse_wall_s},
-                                                {"converged", s.coarse_converged}}
-                               : nlohmann::json(nullptr)}};
-}
-
 // --thickness: metres or "inf" (half-space); empty gives `fallback`.
 double parse_thickness(const std::string& text, double fallback) {
   if (text.empty()) return fallback;
@@ -96,86 +62,6 @@ double parse_thickness(const std::string& text, double fallback) {
   }
   if (used != text.size() || !(t > 0)) throw InputError("--thickness", "must be a length > 0 in m, or inf");
   return t;
-}
-
-// The area-load fits over the converged normal steps: the low-pressure kappa (sec. 5.2.3) from
-// any of them, the quartic (eq. 5.4) and YAM (eq. 3.179, with the quartic's kappa) from four or
-// more; null without a converged normal step. `central_ratio` > 0 (central- over forward-difference
-// rms slope of the obstacle) adds the low-pressure kappa with sigma* normalised by the central
-// slope: kappa scales with the slope that divides sigma*, and thesis-era codes took gradient().
-nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool talk, double central_ratio = 0) {
-  std::vector<double> s, a;
-  for (const auto& st : steps)
-    if (st.converged && st.ux == 0 && st.sigma_star > 0) {
-      s.push_back(st.sigma_star);
-      a.push_back(st.area_fraction);
-    }
-  if (s.empty()) return nullptr;
-  // The low-pressure regression of sec. 5.2.3 needs no minimum: any step below 15 % counts.
-  const LowPressureKappa lp = fit_low_pressure_kappa(s, a);
-  nlohmann::json low = {{"kappa", lp.kappa}, {"points", lp.points}, {"max_area_fraction", lp.max_area}};
-  if (central_ratio > 0) low["kappa_central_slope"] = lp.kappa * central_ratio;
-  if (talk && lp.points > 0) {
-    std::printf("  low-pressure kappa (sec. 5.2.3, A/A0 <= %.2f, %zu step%s): %.4f", lp.max_area, lp.points,
-                lp.points == 1 ? "" : "s", lp.kappa);
-    if (central_ratio > 0) std::printf(" (%.4f with sigma* over the central-difference slope)", lp.kappa * central_ratio);
-    std::printf("\n");
-  }
-  if (s.size() < 4) return nlohmann::json{{"low_pressure", low}};
-  try {
-    const QuarticAreaFit q = fit_quartic_area(s, a);
-    nlohmann::json j = {{"quartic", {{"Pi", q.pi}, {"Omega", q.omega}, {"Lambda", q.lambda}, {"kappa", q.kappa},
-                                     {"r2", q.r2}, {"eps_1e4", 1e4 * (1 - q.r2)}}},
-                        {"low_pressure", low}};
-    if (q.kappa > 0) {
-      const YamFit y = fit_yam(s, a, q.kappa);
-      j["yam"] = {{"kappa", y.kappa}, {"beta", y.beta}, {"mu", y.mu}, {"rms_error", y.rms_error}};
-    }
-    if (talk)
-      std::printf("  area-load fit (eq. 5.4): kappa %.4f, Lambda %.4g, Omega %.4g, Pi %.4g, 1 - R^2 = %.2e\n", q.kappa,
-                  q.lambda, q.omega, q.pi, 1 - q.r2);
-    return j;
-  } catch (const std::invalid_argument&) {
-    return nlohmann::json{{"low_pressure", low}};
-  }
-}
-
-// The curve's summaries in the JSON: the shear test's peak (static friction) and the area-load
-// fits of the normal steps. Returns the peak step (nullptr without one).
-// `obstacle` is the surface whose forward-difference slope (j["rms_slope"]) normalised sigma*.
-const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<ContactStep>& steps, bool talk,
-                                       const HeightMap& obstacle) {
-  const ContactStep* peak = peak_friction(steps);
-  if (peak)
-    j["peak"] = {{"mu", peak->mu}, {"ux", peak->ux}, {"step", int(peak - steps.data()) + 1}, {"reached", peak_reached(steps)}};
-  const double central = rms_slope_finite_difference(obstacle, 0, SlopeStencil::central);
-  j["rms_slope_central"] = central;
-  j["area_load_fit"] = area_load_fit_json(steps, talk, central / j["rms_slope"].get<double>());
-  return peak;
-}
-
-void print_peak(const ContactStep* peak, const std::vector<ContactStep>& steps) {
-  if (!peak) return;
-  if (peak_reached(steps))
-    std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
-                peak->ux, int(peak - steps.data()) + 1);
-  else
-    std::printf("  static friction: mu >= %.4g (still rising at ux = %.4g m, step %d: the peak lies beyond --ux)\n",
-                peak->mu, peak->ux, int(peak - steps.data()) + 1);
-}
-
-void print_step_header() {
-  std::printf("  %4s %10s %10s %11s %11s %8s %8s %9s %10s %10s %5s %6s %8s\n", "step", "uz [m]", "ux [m]", "Fz [N]",
-              "Fx [N]", "mu", "A/A0", "sigma*", "sep [m]", "pen [m]", "sig", "lin", "wall [s]");
-  std::fflush(stdout);
-}
-
-void print_step_row(int k, const ContactStep& st) {
-  std::printf("  %4d %10.4g %10.4g %11.4e %11.4e %8.4f %8.4f %9.4g %10.3e %10.2e %5d %6d %8.2f%s\n", k, st.uz, st.ux,
-              st.fz, st.fx, st.mu, st.area_fraction, st.sigma_star, st.separation, st.max_penetration,
-              st.signorini_iterations, st.linear_iterations, st.wall_s,
-              !st.converged ? "  FAILED" : st.failed_attempts > 0 ? "  (cut back)" : "");
-  std::fflush(stdout);
 }
 
 // --json and --out (contact-face maps per step), each written atomically.
