@@ -19,28 +19,14 @@ void check_contact_scene(const ContactScene& s) {
   if (s.model == ContactModel::analytic && s.shear)
     throw InputError("--model", "the analytic model has no shear test; use fem or spectral");
   if (!(s.pressure >= 0 && std::isfinite(s.pressure))) throw InputError("--pressure", "must be a finite pressure >= 0 Pa");
-  if (!std::isfinite(s.uz) || s.uz < 0) throw InputError("--uz", "must be a finite length >= 0 m");
   const bool load_control = s.model != ContactModel::fem && s.pressure > 0;
-  if (!load_control && !(s.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
-  if (!std::isfinite(s.ux) || (s.shear && !(s.ux > 0)))
-    throw InputError("--ux", "must be a finite length (the shear test needs a tangential displacement > 0 m)");
-  if (s.normal_steps < 1 || s.normal_steps > kMaxLoadSteps || (s.shear && (s.shear_steps < 1 || s.shear_steps > kMaxLoadSteps)))
-    throw InputError("--steps", "must be 1 ... " + std::to_string(kMaxLoadSteps) + " per phase");
-  if (s.refine < 1 || s.refine > 16) throw InputError("--refine", "must be 1 ... 16");
-  if (!(s.young > 0 && std::isfinite(s.young))) throw InputError("--E", "must be a finite modulus > 0 Pa");
-  if (!(s.poisson > -1 && s.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
-  if (!(s.height >= 0 && std::isfinite(s.height))) throw InputError("--height", "must be a finite length >= 0 m (0: a cube)");
+  check_shared_contact_options({s.shear, !load_control, s.uz, s.ux, s.normal_steps, s.shear_steps, s.refine, s.young,
+                                s.poisson, s.height, s.damping, s.tolerance, s.max_penetration, s.facet_band,
+                                s.extrapolate_every, s.cutbacks});
   if (!(s.thickness >= 0)) throw InputError("--thickness", "must be a length > 0 m or inf");
-  if (!(s.tolerance > 0 && s.tolerance < 1)) throw InputError("--tol", "must lie in (0, 1)");
   if (!(s.spectral_tolerance > 0 && s.spectral_tolerance < 1)) throw InputError("--spectral-tol", "must lie in (0, 1)");
   if (s.max_iterations < 0 || s.max_iterations > kMaxIterations)
     throw InputError("--max-iterations", "must be 0 (the model's default) ... " + std::to_string(kMaxIterations));
-  check_extrapolation_block(s.extrapolate_every);
-  check_cutbacks(s.cutbacks);
-  if (std::isnan(s.max_penetration))
-    throw InputError("--max-penetration", "must be a length in m (0: 0.1 x the obstacle's rms height; negative: no check)");
-  if (!(s.damping > 0 && s.damping <= 2)) throw InputError("--damping", "must lie in (0, 2]");
-  if (!(s.facet_band >= 0 && s.facet_band <= 1)) throw InputError("--facet-band", "must lie in [0, 1]");
   if (s.threads < 0) throw InputError("--threads", "must be >= 0 (0: all hardware threads)");
   // The per-step records keep each iteration's residual: refuse a run whose worst case cannot fit.
   const int iterations = s.max_iterations > 0 ? s.max_iterations : (spectral ? 5000 : 300);

@@ -69,30 +69,37 @@ void check_extrapolation_block(int every) {
   if (every < 0 || every == 1) throw InputError("--extrapolate", "must be 0 (off) or a block of >= 2 Signorini iterations");
 }
 
-void check_fem_options(const ContactTestOptions& o) {
-  // The scene's own options (uz, ux, steps, refine, E, nu, tolerance, damping) are checked by
-  // check_contact_scene; these are the FEM's.
-  if (!(o.uz > 0 && std::isfinite(o.uz))) throw InputError("--uz", "the normal displacement must be a finite length > 0 m");
-  if (!std::isfinite(o.ux) || (o.shear && !(o.ux > 0))) throw InputError("--ux", "must be a finite length (> 0 m for a shear test)");
-  if (o.refine < 1 || o.refine > 16) throw InputError("--refine", "must be 1 ... 16");
+void check_shared_contact_options(const SharedContactOptions& o) {
+  if (!std::isfinite(o.uz) || o.uz < 0) throw InputError("--uz", "must be a finite length >= 0 m");
+  if (o.uz_required && !(o.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
+  if (!std::isfinite(o.ux) || (o.shear && !(o.ux > 0)))
+    throw InputError("--ux", "must be a finite length (the shear test needs a tangential displacement > 0 m)");
   if (o.normal_steps < 1 || o.normal_steps > kMaxLoadSteps || (o.shear && (o.shear_steps < 1 || o.shear_steps > kMaxLoadSteps)))
     throw InputError("--steps", "must be 1 ... " + std::to_string(kMaxLoadSteps) + " per phase");
+  if (o.refine < 1 || o.refine > 16) throw InputError("--refine", "must be 1 ... 16");
   if (!(o.young > 0 && std::isfinite(o.young))) throw InputError("--E", "must be a finite modulus > 0 Pa");
   if (!(o.poisson > -1 && o.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
   if (!(o.height >= 0 && std::isfinite(o.height))) throw InputError("--height", "must be a finite length >= 0 m (0: a cube)");
-  if (o.layers_per_level < 1 || o.layers_per_level > 64) throw InputError("--layers", "must be 1 ... 64");
-  if (o.max_coarsenings < 0) throw InputError("--coarsen", "must be >= 0");
   if (!(o.damping > 0 && o.damping <= 2)) throw InputError("--damping", "must lie in (0, 2]");
   if (!(o.tolerance > 0 && o.tolerance < 1)) throw InputError("--tol", "must lie in (0, 1)");
+  if (std::isnan(o.max_penetration))
+    throw InputError("--max-penetration", "must be a length in m (0: 0.1 x the obstacle's rms height; negative: no check)");
+  if (!(o.facet_band >= 0 && o.facet_band <= 1)) throw InputError("--facet-band", "must lie in [0, 1]");
+  check_extrapolation_block(o.extrapolate_every);
+  check_cutbacks(o.cutbacks);
+}
+
+void check_fem_options(const ContactTestOptions& o) {
+  check_shared_contact_options({o.shear, true, o.uz, o.ux, o.normal_steps, o.shear_steps, o.refine, o.young, o.poisson,
+                                o.height, o.damping, o.tolerance, o.max_penetration, o.facet_band,
+                                o.extrapolate_every, o.max_cutbacks});
+  if (o.layers_per_level < 1 || o.layers_per_level > 64) throw InputError("--layers", "must be 1 ... 64");
+  if (o.max_coarsenings < 0) throw InputError("--coarsen", "must be >= 0");
   if (!(o.ksp_rtol > 0 && o.ksp_rtol < 1)) throw InputError("--ksp-rtol", "must lie in (0, 1)");
-  if (std::isnan(o.max_penetration)) throw InputError("--max-penetration", "must be a length in m (negative: no check)");
   if (o.max_iterations < 1 || o.max_iterations > kMaxIterations)
     throw InputError("--max-iterations", "must be 1 ... " + std::to_string(kMaxIterations));
-  if (!(o.facet_band >= 0 && o.facet_band <= 1)) throw InputError("--facet-band", "must lie in [0, 1]");
   if (!(o.block_normals >= 0 && o.block_normals <= 1)) throw InputError("--block-normals", "must lie in [0, 1]");
   if (o.block_normals > 0 && o.facet_normals) throw InputError("--block-normals", "excludes --facet-normals");
-  check_extrapolation_block(o.extrapolate_every);
-  check_cutbacks(o.max_cutbacks);
   if (o.max_cutbacks > 0 && o.coarse_refine > 0)
     throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
   if (o.coarse_refine < 0 || (o.coarse_refine > 0 && (o.coarse_refine >= o.refine || o.refine % o.coarse_refine)))

@@ -107,8 +107,19 @@ void check_extrapolation_block(int every);
 // enough that the per-step records cannot outgrow the machine's memory.
 constexpr int kMaxLoadSteps = 10000;
 constexpr int kMaxIterations = 1000000;
-// Every FEM option at once (InputError naming the option): the one validator that `contact`
-// and the sweeps' scenes both pass through, before any work.
+// The options every contact run has, whichever model and driver (ContactTestOptions, the sweeps'
+// ContactScene): checked in one place (InputError naming the option).
+struct SharedContactOptions {
+  bool shear = false;
+  bool uz_required = true;  // false under load control (--pressure), where uz may be 0
+  double uz = 0, ux = 0;
+  int normal_steps = 1, shear_steps = 1, refine = 1;
+  double young = 1, poisson = 0, height = 0, damping = 1, tolerance = 1e-4, max_penetration = 0, facet_band = 0;
+  int extrapolate_every = 0, cutbacks = 0;
+};
+void check_shared_contact_options(const SharedContactOptions& o);
+// Every FEM option at once (the shared ones above, then the FEM's own): the validator that
+// `contact` and the sweeps' scenes both pass through, before any work.
 void check_fem_options(const ContactTestOptions& opt);
 // --cutbacks' value: 0 ... 8; InputError otherwise.
 void check_cutbacks(int cutbacks);
