@@ -20,5 +20,6 @@ Command add_bench(CLI::App& root);
 Command add_sweep_coverage(CLI::App& root);
 Command add_sweep_roughness(CLI::App& root);
 Command add_report(CLI::App& root);
+Command add_friction(CLI::App& root);
 
 }  // namespace wr::app

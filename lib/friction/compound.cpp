@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "lib/core/errors.hpp"
+#include "lib/friction/modulus_table.hpp"
 
 namespace wr {
 namespace {
@@ -28,6 +29,25 @@ double number(const nlohmann::json& j, const char* key, const std::string& sourc
 std::string text(const nlohmann::json& j, const char* key, const std::string& source) {
   if (!j.contains(key) || !j[key].is_string()) throw InputError(source, std::string("missing text \"") + key + "\"");
   return j[key].get<std::string>();
+}
+
+std::vector<double> number_list(const nlohmann::json& j, const char* key, const std::string& source) {
+  if (!j.is_object() || !j.contains(key) || !j[key].is_array())
+    throw InputError(source, std::string("table: missing list \"") + key + "\"");
+  std::vector<double> out;
+  for (const auto& v : j[key]) {
+    if (!v.is_number()) throw InputError(source, std::string("table.") + key + ": every entry must be a number");
+    out.push_back(v.get<double>());
+  }
+  return out;
+}
+
+ModulusTable table_from_json(const nlohmann::json& j, const std::string& source) {
+  ModulusTable t;
+  t.omega = number_list(j, "omega_rad_s", source);
+  t.storage = number_list(j, "storage_pa", source);
+  t.loss = number_list(j, "loss_pa", source);
+  return t;
 }
 
 }  // namespace
@@ -90,11 +110,23 @@ Compound compound_from_json(const nlohmann::json& j, const std::string& source) 
   c.wlf_c1 = number(j["wlf"], "c1", source);
   c.wlf_c2 = positive(j["wlf"], "c2_k", source);
   c.poisson = number(j, "poisson", source);
-  if (!j.contains("prony")) throw InputError(source, "missing key \"prony\" (the master curve as a Prony series)");
-  const nlohmann::json& p = j["prony"];
-  c.e_relaxed = positive(p, "e_relaxed_pa", source);
-  if (!p.contains("terms") || !p["terms"].is_array()) throw InputError(source, "prony.terms must be a list");
-  for (const auto& t : p["terms"]) c.terms.push_back({positive(t, "tau_s", source), number(t, "de_pa", source)});
+  if (j.contains("prony") == j.contains("table"))
+    throw InputError(source, "give the master curve as either \"prony\" (a Prony series) or \"table\" (omega, E', E''), not " +
+                                 std::string(j.contains("prony") ? "both" : "neither"));
+  if (j.contains("prony")) {
+    const nlohmann::json& p = j["prony"];
+    c.e_relaxed = positive(p, "e_relaxed_pa", source);
+    if (!p.contains("terms") || !p["terms"].is_array()) throw InputError(source, "prony.terms must be a list");
+    for (const auto& t : p["terms"]) c.terms.push_back({positive(t, "tau_s", source), number(t, "de_pa", source)});
+  } else {
+    const ModulusTable table = table_from_json(j["table"], source);
+    const PronyFit fit = causal_prony_fit(table, source);
+    c.form = "table";
+    c.table_rows = table.omega.size();
+    c.table_misfit = fit.max_misfit;
+    c.e_relaxed = fit.e_relaxed;
+    c.terms = fit.terms;
+  }
   if (j.contains("thermal")) {
     const nlohmann::json& t = j["thermal"];
     c.thermal = ThermalProperties{positive(t, "density_kg_m3", source), positive(t, "specific_heat_j_kg_k", source),
@@ -126,6 +158,7 @@ nlohmann::json compound_to_json(const Compound& c) {
                       {"wlf", {{"c1", c.wlf_c1}, {"c2_k", c.wlf_c2}}},
                       {"poisson", c.poisson},
                       {"prony", {{"e_relaxed_pa", c.e_relaxed}, {"terms", terms}}}};
+  if (c.form == "table") j["table_fit"] = {{"rows", c.table_rows}, {"max_misfit", c.table_misfit}};
   if (c.thermal)
     j["thermal"] = {{"density_kg_m3", c.thermal->density},
                     {"specific_heat_j_kg_k", c.thermal->specific_heat},

@@ -14,6 +14,9 @@
 //    "reference_temperature_c": 20, "wlf": {"c1": 8.86, "c2_k": 101.6}, "poisson": 0.5,
 //    "prony": {"e_relaxed_pa": 3e6, "terms": [{"tau_s": 1e-6, "de_pa": 1e8}, ...]},
 //    "thermal": {"density_kg_m3": 1200, "specific_heat_j_kg_k": 1500, "conductivity_w_m_k": 0.25}}
+// or, instead of "prony", a measured master curve at Tref:
+//    "table": {"omega_rad_s": [...], "storage_pa": [...], "loss_pa": [...]}
+// which is checked for causality and used through its Prony fit (lib/friction/modulus_table).
 // "synthetic" and "thermal" are optional (thermal: needed by the flash temperature).
 #include <complex>
 #include <optional>
@@ -44,6 +47,11 @@ struct Compound {
   double e_relaxed = 0;  // Pa, > 0
   std::vector<PronyTerm> terms;
   std::optional<ThermalProperties> thermal;
+  // "prony" or "table" (then the terms are the causal fit of the table's rows, whose largest
+  // relative misfit is table_misfit).
+  std::string form = "prony";
+  std::size_t table_rows = 0;
+  double table_misfit = 0;
 
   // log10 of the WLF shift factor aT at `temperature` (deg C); InputError when the temperature is
   // at or below Tref - C2, where the WLF equation has its pole.

@@ -1,0 +1,226 @@
+// `wetroad friction SURFACE [--wet WET.h5]`: Persson's hysteresis friction mu(v), dry and wet
+// (lib/friction/friction_scene.hpp).
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "app/print_summary.hpp"
+#include "lib/core/errors.hpp"
+#include "lib/friction/friction_file.hpp"
+#include "lib/friction/friction_scene.hpp"
+#include "lib/io/atomic_output.hpp"
+#include "lib/io/hdf5_file.hpp"
+#include "lib/io/output_set.hpp"
+#include "reports/plot.hpp"
+#include "roads/surface_import.hpp"
+#include "wetroad/version.hpp"
+
+namespace wr::app {
+namespace {
+
+struct FrictionCli {
+  std::string input, wet, compound, json, out, plot, plot_q1;
+  double temperature = 20, pressure = 3e5;
+  std::vector<double> speeds, speed_range;
+  double q1 = 0;
+  bool flash = false, quiet = false;
+  int points_per_decade = 48, threads = 0;
+  CLI::Option *q1_opt = nullptr, *speeds_opt = nullptr, *range_opt = nullptr;
+};
+
+std::vector<double> log_speeds(const std::vector<double>& range) {
+  const double a = range[0], b = range[1], n = range[2];
+  if (!(a > 0 && b > a && std::isfinite(b)))
+    throw InputError("--speed-range", "give A B N with 0 < A < B (m/s)");
+  if (!(n >= 2 && n <= 1000 && n == std::floor(n))) throw InputError("--speed-range", "N must be a whole number in 2 ... 1000");
+  std::vector<double> v;
+  for (int i = 0; i < static_cast<int>(n); ++i) v.push_back(a * std::pow(b / a, i / (n - 1)));
+  return v;
+}
+
+// The fraction of the wet file's area under water (/water_depth > 0), and its wet surface.
+double coverage_of(const std::string& path) {
+  Hdf5Reader r(path);
+  if (!r.has_dataset("/water_depth"))
+    throw InputError(path, "no /water_depth: --wet takes the output of `wetroad fill`");
+  const std::vector<std::size_t> d = r.dims("/water_depth");
+  std::size_t n = 1;
+  for (std::size_t x : d) n *= x;
+  std::vector<double> depth(n);
+  r.read_doubles("/water_depth", depth.data(), n);
+  std::size_t wet = 0;
+  for (double x : depth) wet += x > 0;
+  return static_cast<double>(wet) / static_cast<double>(n);
+}
+
+PlotSpec curve_plot(const FrictionRun& r, const FrictionScene& s) {
+  PlotSpec p;
+  p.title = std::string("hysteresis friction, ") + s.compound.name + (s.compound.synthetic ? " (SYNTHETIC compound)" : "") +
+            (s.options.flash_temperature ? ", flash temperature" : ", isothermal");
+  p.xlabel = "sliding speed v (m/s)";
+  p.ylabel = "mu";
+  p.logx = true;
+  auto series = [](const FrictionCurve& c, const std::string& label) {
+    PlotSeries ps;
+    ps.label = label;
+    for (const FrictionPoint& q : c.points) {
+      ps.x.push_back(q.v);
+      ps.y.push_back(q.mu);
+    }
+    return ps;
+  };
+  p.series.push_back(series(r.dry, "dry"));
+  if (r.wet_homogeneous) {
+    char cov[64];
+    std::snprintf(cov, sizeof cov, " (coverage %.0f %%)", 100 * r.coverage);
+    p.series.push_back(series(*r.wet_homogeneous, "wet, homogeneous sealing" + std::string(cov)));
+    p.series.push_back(series(*r.wet_local, "wet, local sealing" + std::string(cov)));
+  }
+  return p;
+}
+
+void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<std::pair<double, double>>& q1_scan) {
+  std::printf("hysteresis friction (Persson), compound: %s%s\n", s.compound.name.c_str(),
+              s.compound.synthetic ? "  [SYNTHETIC]" : "");
+  std::printf("  sigma0 %.3g Pa, T0 %.1f C, flash temperature %s\n", s.options.pressure, s.options.temperature,
+              s.options.flash_temperature ? "on" : "off");
+  std::printf("  spectrum q %.3g ... %.3g 1/m, measured to %.3g 1/m%s\n", r.dry_spectrum.q_start, r.dry_spectrum.q_end,
+              r.dry_spectrum.q_measured,
+              r.dry_spectrum.extrapolated() ? "; above that EXTRAPOLATED along the fitted self-affine law" : "");
+  std::printf("\n  %11s %8s %10s %8s", "v (m/s)", "mu", "A/A0", "dT (K)");
+  if (r.wet_homogeneous) std::printf(" %10s %10s", "mu wet-hom", "mu wet-loc");
+  std::printf("\n");
+  for (std::size_t i = 0; i < r.dry.points.size(); ++i) {
+    const FrictionPoint& p = r.dry.points[i];
+    std::printf("  %11.4g %8.4f %10.4g %8.2f", p.v, p.mu, p.area_fraction, p.temperature_rise);
+    if (r.wet_homogeneous) std::printf(" %10.4f %10.4f", r.wet_homogeneous->points[i].mu, r.wet_local->points[i].mu);
+    std::printf("\n");
+  }
+  std::printf("\n  peak: mu %.4f at v %.3g m/s\n", r.dry.peak_mu, r.dry.peak_v);
+  std::printf("  locked wheel (64 km/h): mu %.4f, SN %.1f", r.dry.at_locked_wheel.mu, r.dry.sn64);
+  if (r.wet_homogeneous)
+    std::printf("; wet (coverage %.1f %%): homogeneous %.4f, local %.4f", 100 * r.coverage, r.wet_homogeneous->at_locked_wheel.mu,
+                r.wet_local->at_locked_wheel.mu);
+  std::printf("\n");
+  if (!q1_scan.empty()) {
+    std::printf("  mu at 17.9 m/s against the cut-off q1 (the unmeasured scales):");
+    for (const auto& [q1, mu] : q1_scan) std::printf(" %.3g:%.3f", q1, mu);
+    std::printf("\n");
+  }
+  std::printf("\nchecks\n");
+  for (const ValidityCheck& c : r.checks)
+    std::printf("  [%s] %s: %s\n", c.passed ? "pass" : (c.decides_model ? "FAIL" : "flag"), c.name.c_str(), c.detail.c_str());
+  std::printf("\ntimings\n%s", r.timer.table().c_str());
+}
+
+int run_friction_command(const FrictionCli& c) {
+  OutputSet outputs;
+  outputs.input(c.input);
+  outputs.input(c.wet);
+  outputs.input(c.compound);
+  const std::string json_path = outputs.add("--json", c.json), out_path = outputs.add("--out", c.out),
+                    plot_path = outputs.add("--plot", c.plot), plot_q1_path = outputs.add("--plot-q1", c.plot_q1);
+  FrictionScene s;
+  s.compound_path = c.compound.empty() ? default_compound_path() : c.compound;
+  s.compound = read_compound_json(s.compound_path);
+  s.options.pressure = c.pressure;
+  s.options.temperature = c.temperature;
+  s.options.flash_temperature = c.flash;
+  s.options.points_per_decade = c.points_per_decade;
+  s.options.threads = c.threads;
+  if (c.q1_opt->count()) s.q1 = c.q1;
+  if (c.speeds_opt->count() && c.range_opt->count()) throw InputError("--speeds", "give --speeds or --speed-range, not both");
+  s.speeds = c.speeds_opt->count() ? c.speeds : log_speeds(c.range_opt->count() ? c.speed_range : std::vector<double>{1e-6, 100, 33});
+  check_friction_scene(s);
+
+  const LoadedSurface dry = load_surface(c.input);
+  print_load_warnings(dry);
+  std::optional<LoadedSurface> wet_map;
+  std::optional<WetSurface> wet;
+  if (!c.wet.empty()) {
+    const double coverage = coverage_of(c.wet);
+    wet_map = load_surface(c.wet);
+    wet = WetSurface{&wet_map->map, coverage};
+  }
+  const FrictionRun r = run_friction(dry.map, wet, s, c.input);
+  std::vector<std::pair<double, double>> q1_scan;
+  if (r.dry_spectrum.q_measured > 0) {
+    std::vector<double> q1s;
+    for (int k = 0; k <= 8; ++k) q1s.push_back(r.dry_spectrum.q_measured * std::pow(10.0, k / 4.0));
+    q1_scan = mu_against_q1(dry.map, s, kLockedWheelSpeed, q1s, c.input);
+  }
+
+  Provenance prov;
+  prov.command = "friction";
+  prov.inputs = {{"surface", c.input}, {"wet", c.wet}, {"compound", s.compound_path}};
+  prov.parameters = {{"pressure", s.options.pressure},       {"temperature", s.options.temperature},
+                     {"flash_temperature", c.flash},         {"q1", r.dry_spectrum.q_end},
+                     {"points_per_decade", c.points_per_decade}, {"speeds", s.speeds}};
+  prov.model = "hysteresis (Persson 2001; sealing: homogeneous and local)";
+  prov.timings = r.timer.to_json();
+  nlohmann::json j = friction_run_json(r, s);
+  nlohmann::json scan = nlohmann::json::array();
+  for (const auto& [q1, mu] : q1_scan) scan.push_back({{"q1", q1}, {"mu_locked_wheel", mu}});
+  j["q1_scan"] = scan;
+  j["provenance"] = prov.to_json();
+  if (!json_path.empty()) write_text_atomically(json_path, j.dump(2) + "\n");
+  if (!out_path.empty()) write_friction_file(out_path, r, j, prov.to_json());
+  if (!plot_path.empty()) write_svg_plot(plot_path, curve_plot(r, s));
+  if (!plot_q1_path.empty()) {
+    PlotSpec p;
+    p.title = "mu at 17.9 m/s against the cut-off q1 (measured to " + std::to_string(static_cast<int>(r.dry_spectrum.q_measured)) + " 1/m)";
+    p.xlabel = "q1 (1/m)";
+    p.ylabel = "mu";
+    p.logx = true;
+    PlotSeries ps;
+    ps.label = "dry";
+    for (const auto& [q1, mu] : q1_scan) {
+      ps.x.push_back(q1);
+      ps.y.push_back(mu);
+    }
+    p.series.push_back(ps);
+    write_svg_plot(plot_q1_path, p);
+  }
+  outputs.commit();
+  if (!c.quiet) print_run(r, s, q1_scan);
+  return 0;
+}
+
+}  // namespace
+
+Command add_friction(CLI::App& root) {
+  auto c = std::make_shared<FrictionCli>();
+  CLI::App* s = root.add_subcommand("friction", "hysteresis friction mu(v) of tread rubber on a dry and a wet surface");
+  s->footer(
+      "Persson's theory of rubber friction (J. Chem. Phys. 115, 3840 (2001); the thesis's eq. 3.170):\n"
+      "the road's asperities excite the rubber at frequencies q v and its loss modulus dissipates\n"
+      "energy. Input: the surface's isotropic PSD (from the map), extended above the measured band\n"
+      "to --q1 along the fitted self-affine law (flagged as extrapolated), and the compound's master\n"
+      "curve E(omega, T) (WLF shift). --wet adds the wet surface of `wetroad fill` with two sealing\n"
+      "models: homogeneous (the wet surface's PSD) and local (sealed water carries load, dissipates\n"
+      "nothing; the dry patches keep their roughness). Prints mu(v), A/A0, the flash temperature's\n"
+      "rise, the peak, mu at 64 km/h (SN = 100 mu) and the model's validity checks.\n"
+      "Default compound: share/compounds/synthetic-tread.json (SYNTHETIC: see its source field).\n"
+      "Example: wetroad friction road.h5 --wet road-wet.h5 --flash-temperature --plot mu.svg");
+  s->add_option("surface", c->input, "the dry surface (HDF5 map or text grid)")->required();
+  s->add_option("--wet", c->wet, "the wet surface: output of `wetroad fill` (/height, /water_depth)");
+  s->add_option("--compound", c->compound, "compound JSON file (format: docs/file-formats.md)");
+  s->add_option("--temperature", c->temperature, "road and rubber temperature in deg C")->capture_default_str();
+  s->add_option("--pressure", c->pressure, "nominal contact pressure sigma0 in Pa")->capture_default_str();
+  c->speeds_opt = s->add_option("--speeds", c->speeds, "sliding speeds in m/s");
+  c->range_opt = s->add_option("--speed-range", c->speed_range, "A B N: N speeds log-spaced from A to B m/s (default 1e-6 100 33)")
+                     ->expected(3);
+  c->q1_opt = s->add_option("--q1", c->q1, "short-wavelength cut-off in 1/m (default: 10x the map's last resolved wavenumber)");
+  s->add_flag("--flash-temperature", c->flash, "heat the rubber at each scale by the power the coarser scales dissipate");
+  s->add_option("--points-per-decade", c->points_per_decade, "q quadrature nodes per decade")->capture_default_str();
+  s->add_option("--json", c->json, "write the result as JSON (SI units)");
+  s->add_option("--out", c->out, "write the curves and the spectrum as HDF5");
+  s->add_option("--plot", c->plot, "chart mu(v) dry and wet as SVG");
+  s->add_option("--plot-q1", c->plot_q1, "chart mu at 17.9 m/s against the cut-off q1 as SVG");
+  s->add_option("--threads", c->threads, "worker threads over speeds (default: all)");
+  s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
+  return {s, [c] { return run_friction_command(*c); }};
+}
+
+}  // namespace wr::app

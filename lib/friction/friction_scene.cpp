@@ -1,0 +1,186 @@
+#include "lib/friction/friction_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "lib/core/errors.hpp"
+#include "roads/psd_fit.hpp"
+#include "roads/spectrum.hpp"
+
+namespace wr {
+namespace {
+
+std::string text(double x, int digits = 3) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
+// The curve at the scene's speeds plus the locked-wheel point, its peak and skid number.
+FrictionCurve curve(const std::string& surface, const RoughnessSpectrum& psd, const FrictionScene& s,
+                    double mu_scale, double area_scale) {
+  std::vector<double> speeds = s.speeds;
+  speeds.push_back(kLockedWheelSpeed);
+  std::vector<FrictionPoint> pts = friction_curve(psd, s.compound, speeds, s.options);
+  for (FrictionPoint& p : pts) {
+    p.mu *= mu_scale;
+    p.mu_extrapolated *= mu_scale;
+    p.area_fraction *= area_scale;
+  }
+  FrictionCurve c;
+  c.surface = surface;
+  c.at_locked_wheel = pts.back();
+  pts.pop_back();
+  c.points = std::move(pts);
+  c.sn64 = 100 * c.at_locked_wheel.mu;
+  for (const FrictionPoint& p : c.points)
+    if (p.mu > c.peak_mu) {
+      c.peak_mu = p.mu;
+      c.peak_v = p.v;
+    }
+  return c;
+}
+
+RoughnessSpectrum spectrum_of(const HeightMap& map, std::optional<double> q1, int threads, const std::string& source,
+                              PsdFit* fit_out, double* nyquist_out) {
+  const SpectrumResult sp = analyze_spectrum(map, threads);
+  const PsdFit fit = fit_self_affine(sp.psd, sp.nyquist, map.is_profile());
+  if (fit_out) *fit_out = fit;
+  if (nyquist_out) *nyquist_out = sp.nyquist;
+  return spectrum_from_psd(sp.psd, sp.nyquist, fit, q1, source);
+}
+
+std::vector<ValidityCheck> scene_checks(const FrictionRun& r, const FrictionScene& s) {
+  std::vector<ValidityCheck> checks;
+  const double ratio = s.options.pressure / s.compound.e_relaxed;
+  checks.push_back({"pressure well below the rubbery modulus", ratio <= kMaxPressureToModulus,
+                    "sigma0 / E_r = " + text(ratio) + " (limit " + text(kMaxPressureToModulus) + ")", true});
+  const FrictionPoint& lw = r.dry.at_locked_wheel;
+  const double share = lw.mu > 0 ? lw.mu_extrapolated / lw.mu : 0;
+  checks.push_back({"measured band carries most of the friction", share <= 0.5,
+                    r.dry_spectrum.extrapolated()
+                        ? "scales above the measured band (q > " + text(r.dry_spectrum.q_measured) + " 1/m, up to q1 = " +
+                              text(r.dry_spectrum.q_end) + " 1/m) carry " + text(100 * share) + " % of mu at 17.9 m/s"
+                        : "no extrapolation: q1 = " + text(r.dry_spectrum.q_end) + " 1/m lies in the measured band",
+                    false});
+  checks.push_back({"compound fitted to a measured master curve", !s.compound.synthetic,
+                    s.compound.synthetic ? "SYNTHETIC compound \"" + s.compound.name + "\": trends, not a prediction for a real tyre"
+                                         : "\"" + s.compound.name + "\" (" + s.compound.source + ")",
+                    false});
+  return checks;
+}
+
+}  // namespace
+
+std::string default_compound_path() { return std::string(WETROAD_SHARE_DIR) + "/compounds/synthetic-tread.json"; }
+
+void check_friction_scene(const FrictionScene& s) {
+  if (s.speeds.empty()) throw InputError("--speeds", "give at least one sliding speed");
+  for (double v : s.speeds)
+    if (!(v > 0 && std::isfinite(v))) throw InputError("--speeds", "a sliding speed must be positive (m/s), got " + text(v));
+  check_friction_options(s.options, s.compound);
+  if (s.q1 && !(*s.q1 > 0 && std::isfinite(*s.q1))) throw InputError("--q1", "must be a positive wavenumber in 1/m");
+}
+
+FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& wet, const FrictionScene& s,
+                         const std::string& source) {
+  check_friction_scene(s);
+  if (dry.is_profile()) throw InputError(source, "the hysteresis model needs a 2-D map (an isotropic PSD), not a profile");
+  FrictionRun r;
+  r.timer.start("spectrum");
+  r.dry_spectrum = spectrum_of(dry, s.q1, s.options.threads, source, &r.fit, &r.nyquist);
+  r.timer.start("dry mu(v)");
+  r.dry = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
+  if (wet) {
+    if (wet->height->nx != dry.nx || wet->height->ny != dry.ny)
+      throw InputError(source, "the wet surface's grid differs from the dry surface's");
+    if (!(wet->coverage >= 0 && wet->coverage < 1)) throw InputError(source, "water coverage must lie in [0, 1)");
+    r.coverage = wet->coverage;
+    const double phi = 1 - wet->coverage;
+    r.timer.start("wet spectrum");
+    const SpectrumResult sp = analyze_spectrum(*wet->height, s.options.threads);
+    RoughnessSpectrum homogeneous = wet_spectrum(r.dry_spectrum, sp.psd, sp.nyquist, phi);
+    r.timer.start("wet mu(v)");
+    r.wet_homogeneous = curve("wet-homogeneous", homogeneous, s, 1.0, 1.0);
+    RoughnessSpectrum local = homogeneous;
+    local.scale = 1 / phi;
+    r.wet_local = curve("wet-local", local, s, phi, phi);
+  }
+  r.timer.start("checks");
+  r.checks = scene_checks(r, s);
+  r.timer.stop();
+  return r;
+}
+
+std::vector<std::pair<double, double>> mu_against_q1(const HeightMap& dry, const FrictionScene& s, double speed,
+                                                     const std::vector<double>& q1s, const std::string& source) {
+  std::vector<std::pair<double, double>> out;
+  PsdFit fit;
+  double nyquist = 0;
+  const SpectrumResult sp = analyze_spectrum(dry, s.options.threads);
+  fit = fit_self_affine(sp.psd, sp.nyquist, false);
+  nyquist = sp.nyquist;
+  for (double q1 : q1s) {
+    const RoughnessSpectrum psd = spectrum_from_psd(sp.psd, nyquist, fit, q1, source);
+    out.push_back({q1, hysteresis_friction(psd, s.compound, speed, s.options).mu});
+  }
+  return out;
+}
+
+nlohmann::json friction_curve_json(const FrictionCurve& c) {
+  nlohmann::json pts = nlohmann::json::array();
+  for (const FrictionPoint& p : c.points)
+    pts.push_back({{"v", p.v},
+                   {"mu", p.mu},
+                   {"area_fraction", p.area_fraction},
+                   {"temperature_rise", p.temperature_rise},
+                   {"mu_extrapolated", p.mu_extrapolated}});
+  return {{"surface", c.surface},
+          {"speeds", pts},
+          {"peak", {{"mu", c.peak_mu}, {"v", c.peak_v}}},
+          {"sn64", c.sn64},
+          {"locked_wheel", {{"v", kLockedWheelSpeed}, {"mu", c.at_locked_wheel.mu},
+                            {"area_fraction", c.at_locked_wheel.area_fraction},
+                            {"temperature_rise", c.at_locked_wheel.temperature_rise}}}};
+}
+
+nlohmann::json hysteresis_validity_json(const std::vector<ValidityCheck>& checks) {
+  nlohmann::json list = nlohmann::json::array();
+  bool valid = true;
+  for (const ValidityCheck& c : checks) {
+    list.push_back({{"check", c.name}, {"passed", c.passed}, {"detail", c.detail}, {"decides_model", c.decides_model}});
+    if (c.decides_model && !c.passed) valid = false;
+  }
+  return {{"model", "hysteresis"},
+          {"mechanism", "viscoelastic hysteresis of the rubber (Persson 2001), the friction a tyre has"},
+          {"valid", valid},
+          {"checks", list}};
+}
+
+nlohmann::json friction_run_json(const FrictionRun& r, const FrictionScene& s) {
+  nlohmann::json j = friction_curve_json(r.dry);
+  j["model"] = "hysteresis";
+  j["compound"] = compound_to_json(s.compound);
+  j["compound"]["path"] = s.compound_path;
+  j["temperature"] = s.options.temperature;
+  j["pressure"] = s.options.pressure;
+  j["q0"] = r.dry_spectrum.q_start;
+  j["q1"] = r.dry_spectrum.q_end;
+  j["q_measured"] = r.dry_spectrum.q_measured;
+  j["extrapolated"] = r.dry_spectrum.extrapolated();
+  j["extension_beta"] = r.dry_spectrum.extension_beta;
+  j["flash_temperature"] = s.options.flash_temperature;
+  j["points_per_decade"] = s.options.points_per_decade;
+  j["validity"] = hysteresis_validity_json(r.checks);
+  if (r.wet_homogeneous) {
+    j["wet"] = {{"coverage", r.coverage},
+                {"homogeneous", friction_curve_json(*r.wet_homogeneous)},
+                {"local", friction_curve_json(*r.wet_local)}};
+  }
+  j["timings"] = r.timer.to_json();
+  return j;
+}
+
+}  // namespace wr

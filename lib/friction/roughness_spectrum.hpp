@@ -1,0 +1,56 @@
+#pragma once
+// The isotropic power spectrum a sliding rubber feels, C(q) on [qs, q1], built from a measured
+// radial PSD (roads/spectrum) and, beyond the map's resolution, extended along the fitted
+// self-affine law (roads/psd_fit) up to the cut-off q1.
+//
+// Convention: h0^2 = int d^2q C(q) (design.md), C in m^4, q in 1/m.
+// Between measured nodes C is interpolated linearly in log q - log C. Above the last measured
+// node q_m, C(q) = C_fit(q_m) (q/q_m)^-beta with the fitted exponent beta = 2(H+1) and the fitted
+// law's value at q_m (the last bin alone is the noisiest), times `extension_scale` (a wet
+// surface's flat water adds no short-wavelength roughness: its extension is the dry one times
+// the dry area fraction). Every value is multiplied by `scale` (the local sealing model's
+// roughness per unit dry area).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roads/psd_fit.hpp"
+#include "roads/spectrum.hpp"
+
+namespace wr {
+
+// Default cut-off: one decade beyond the measured band (q1 = 10 q_m). Measured road maps resolve
+// ~0.1 mm; the rubber feels roughness down to ~10 um (Persson's road spectra run to 1e5-1e6 1/m).
+constexpr double kDefaultQ1Decades = 1.0;
+
+struct RoughnessSpectrum {
+  std::vector<double> q, C;      // measured nodes, ascending, q > 0, C > 0
+  double q_start = 0;            // 1/m, lower end of the friction integral (the map's qL)
+  double q_end = 0;              // 1/m, q1
+  double q_measured = 0;         // 1/m, last measured node
+  double extension_beta = 0;     // C ~ q^-beta above q_measured
+  double extension_anchor = 0;   // m^4, C of the extension at q_measured
+  double extension_scale = 1;
+  double scale = 1;
+  bool extrapolated() const { return q_end > q_measured * (1 + 1e-12); }
+  double operator()(double q) const;  // m^4; 0 outside [q_start, q_end]
+  // int d^2q C over [q_start, q_end] = 2 pi int q C dq (trapezoid in ln q on the nodes): h0^2, m^2.
+  double rms_height() const;
+};
+
+// From a map's radial PSD: nodes are the bins with count > 0, 0 < q <= nyquist and C > 0.
+// `q1` (1/m): the cut-off; absent = kDefaultQ1Decades beyond the last node. A q1 above the
+// measured band needs a successful fit (InputError naming `source` otherwise); a q1 at or below
+// the second node is refused (InputError naming --q1) as is one that is not finite.
+RoughnessSpectrum spectrum_from_psd(const RadialPsd& psd, double nyquist, const PsdFit& fit,
+                                    std::optional<double> q1, const std::string& source);
+
+// A spectrum with the extension of `dry` (same beta and anchor, scaled by `extension_scale`)
+// but the measured nodes of `wet_psd`: the sealed (homogeneous) wet surface.
+RoughnessSpectrum wet_spectrum(const RoughnessSpectrum& dry, const RadialPsd& wet_psd, double nyquist,
+                               double extension_scale);
+
+// C = c (m^4) on [qa, qb] and 0 elsewhere: the one-band surface of the exact tests.
+RoughnessSpectrum band_spectrum(double qa, double qb, double c);
+
+}  // namespace wr
