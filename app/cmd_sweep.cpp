@@ -28,19 +28,31 @@
 namespace wr::app {
 namespace {
 
-// The options every sweep shares: the contact scene and the outputs.
+// The options every sweep shares: the friction model (a contact scene or the hysteresis
+// model) and the outputs.
 struct SweepCommonCli {
   std::string model = "fem", out, csv, json, plots;
   ContactScene scene;
+  std::string compound;
+  double pressure = 3e5, temperature = 20, speed = kLockedWheelSpeed, friction_q1 = 0;
+  bool flash = false;
+  CLI::Option *uz_opt = nullptr, *ux_opt = nullptr, *q1_opt = nullptr;
   int threads = 0;
   bool resume = false, quiet = false;
 };
 
 void add_common_options(CLI::App& s, SweepCommonCli& c) {
-  s.add_option("--model", c.model, "contact model: fem (finite block), spectral (periodic layer) or auto (the ladder's "
-              "cheapest model valid for friction)")->capture_default_str();
-  s.add_option("--uz", c.scene.uz, "final normal displacement of the block's top, m")->required();
-  s.add_option("--ux", c.scene.ux, "final tangential displacement of the top, m")->required();
+  s.add_option("--model", c.model, "friction model: fem (finite block), spectral (periodic layer), auto (the ladder's "
+              "cheapest contact model valid for friction): elastostatic friction; or hysteresis (Persson's mu at --speed)")
+      ->capture_default_str();
+  c.uz_opt = s.add_option("--uz", c.scene.uz, "contact models (required): final normal displacement of the block's top, m");
+  c.ux_opt = s.add_option("--ux", c.scene.ux, "contact models (required): final tangential displacement of the top, m");
+  s.add_option("--compound", c.compound, "hysteresis: compound JSON (default share/compounds/synthetic-tread.json)");
+  s.add_option("--pressure", c.pressure, "hysteresis: nominal pressure sigma0, Pa")->capture_default_str();
+  s.add_option("--temperature", c.temperature, "hysteresis: temperature, deg C")->capture_default_str();
+  s.add_option("--speed", c.speed, "hysteresis: sliding speed, m/s (default 17.9: the locked wheel at 64 km/h)");
+  c.q1_opt = s.add_option("--friction-q1", c.friction_q1, "hysteresis: spectrum cut-off q1, 1/m (as `friction --q1`)");
+  s.add_flag("--flash-temperature", c.flash, "hysteresis: with the flash temperature (as `friction`)");
   s.add_option("--steps", c.scene.normal_steps, "normal load steps")->capture_default_str();
   s.add_option("--shear-steps", c.scene.shear_steps, "shear steps")->capture_default_str();
   s.add_option("--refine", c.scene.refine, "contact-face spacing = surface spacing / refine")->capture_default_str();
@@ -99,6 +111,28 @@ ContactModel parse_sweep_model(const std::string& name, bool quiet) {
   } catch (const std::invalid_argument& e) {
     throw InputError("--model", e.what());
   }
+}
+
+// The hysteresis model's scene from the common options (model "hysteresis"); nullopt for the
+// contact models, which need --uz and --ux.
+std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
+  if (c.model != "hysteresis") {
+    if (!c.uz_opt->count()) throw InputError("--uz", "required by the contact models (fem, spectral, auto)");
+    if (!c.ux_opt->count()) throw InputError("--ux", "required by the contact models (fem, spectral, auto)");
+    return std::nullopt;
+  }
+  if (c.uz_opt->count() || c.ux_opt->count())
+    throw InputError(c.uz_opt->count() ? "--uz" : "--ux", "the hysteresis model has no block to displace (see --speed)");
+  FrictionScene s;
+  s.compound_path = c.compound.empty() ? default_compound_path() : c.compound;
+  s.compound = read_compound_json(s.compound_path);
+  s.options.pressure = c.pressure;
+  s.options.temperature = c.temperature;
+  s.options.flash_temperature = c.flash;
+  if (c.q1_opt->count()) s.q1 = c.friction_q1;
+  s.speeds = {c.speed};
+  check_friction_scene(s);
+  return s;
 }
 
 // What distinguishes one sweep kind from the other in the driver below.
@@ -176,7 +210,9 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
   prov.command = k.command;
   prov.inputs = k.spec.contains("surface") ? k.spec["surface"] : nlohmann::json::object();
   prov.parameters = k.spec;
-  prov.model = k.spec["scene"]["model"].get<std::string>() + " contact scene per run (see each run's contact.validity)";
+  prov.model = k.spec["scene"]["model"] == "hysteresis"
+                   ? std::string("hysteresis friction per run (Persson; see each run's contact.validity)")
+                   : k.spec["scene"]["model"].get<std::string>() + " contact scene per run (see each run's contact.validity)";
   prov.timings = {{"total", wall}, {"ranks", ranks}, {"runs_this_invocation", pending.size()}};
   nlohmann::json sweep = {{"spec", k.spec},          {"table", table},       {"runs", runs},
                           {"failed_runs", failed_total}, {"checkpoint", cp.dir()}, {"provenance", prov.to_json()}};
@@ -261,7 +297,8 @@ CoverageSweepSpec coverage_spec(const CoverageCli& c) {
     if (launch_rank_and_size().first == 0) print_load_warnings(surface);
   }
   s.scene = c.common.scene;
-  s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
+  s.hysteresis = hysteresis_scene(c.common);
+  if (!s.hysteresis) s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
   if (c.tiling != "torus" && c.tiling != "3x3") throw InputError("--tiling", "must be torus or 3x3");
   s.tiling = c.tiling == "torus" ? Tiling::torus : Tiling::three_by_three;
   s.connectivity = c.connectivity;
@@ -271,13 +308,16 @@ CoverageSweepSpec coverage_spec(const CoverageCli& c) {
 
 void print_coverage_table(const nlohmann::json& sweep) {
   auto v = value_or_nan;
-  std::printf("  %8s %9s %8s %10s %10s %16s %10s %10s %12s %4s %6s\n", "target", "water", "coverage", "mu_peak",
-              "mu/mu_dry", "+-95%", "A/A0 norm", "A/A0 peak", "pool [mm]", "n", "failed");
+  // The hysteresis model's mu is the local sealing model's; the homogeneous one stands beside it.
+  const bool hysteresis = sweep["spec"]["scene"]["model"] == "hysteresis";
+  std::printf("  %8s %9s %8s %10s %10s %16s%s %10s %10s %12s %4s %6s\n", "target", "water", "coverage", "mu_peak",
+              "mu/mu_dry", "+-95%", hysteresis ? "    hom/dry" : "", "A/A0 norm", "A/A0 peak", "pool [mm]", "n", "failed");
   for (const auto& r : sweep["table"])
-    std::printf("  %s %9s %s %s %s %s %s %s %s %4d %6d\n", cell(100 * v(r["target"]), "%.1f%%", 8).c_str(),
+    std::printf("  %s %9s %s %s %s %s%s %s %s %s %4d %6d\n", cell(100 * v(r["target"]), "%.1f%%", 8).c_str(),
                 r["water"].get<std::string>().c_str(), cell(100 * v(r["coverage"]["mean"]), "%.1f%%", 8).c_str(),
                 cell(v(r["mu_peak"]["mean"]), "%.4g", 10).c_str(), cell(100 * v(r["mu_ratio"]["mean"]), "%.1f%%", 10).c_str(),
-                cell(100 * v(r["mu_ratio"]["ci95"]), "%.1f%%", 16).c_str(), cell(v(r["area_normal"]["mean"]), "%.4f", 10).c_str(),
+                cell(100 * v(r["mu_ratio"]["ci95"]), "%.1f%%", 16).c_str(),
+                hysteresis ? (" " + cell(100 * v(r["mu_ratio_homogeneous"]["mean"]), "%.1f%%", 10)).c_str() : "", cell(v(r["area_normal"]["mean"]), "%.4f", 10).c_str(),
                 cell(v(r["area_at_peak"]["mean"]), "%.4f", 10).c_str(),
                 cell(1e3 * v(r["mean_pool_depth"]["mean"]), "%.4f", 12).c_str(), r["mu_peak"]["n"].get<int>(),
                 r["failed"].get<int>());
@@ -299,7 +339,7 @@ int run_sweep_coverage(const CoverageCli& c) {
   k.runs = int(keys.size());
   k.headline = "coverage sweep: " + std::to_string(keys.size()) + " runs (" + std::to_string(spec.coverages.size()) +
                " coverages x " + std::to_string(spec.realizations) + " realizations), model " +
-               model_name(spec.scene.model);
+               (spec.hysteresis ? "hysteresis" : model_name(spec.scene.model));
   k.run = [spec, keys, runner](int i, int threads) {
     if (!*runner) *runner = std::make_unique<CoverageRunner>(spec, PETSC_COMM_SELF, threads);
     return (*runner)->run(keys[std::size_t(i)]);
@@ -347,7 +387,8 @@ RoughnessSweepSpec roughness_spec(const RoughnessCli& c) {
     if (c.synth.given("--seed")) s.base.seed = o.seed;
   }
   s.scene = c.common.scene;
-  s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
+  s.hysteresis = hysteresis_scene(c.common);
+  if (!s.hysteresis) s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
   check_roughness_spec(s);
   return s;
 }
@@ -381,7 +422,7 @@ int run_sweep_roughness(const RoughnessCli& c) {
   k.headline = "roughness sweep, dataset " + spec.dataset + ": " + std::to_string(k.runs) + " runs (" +
                std::to_string(spec.values.size()) + " values of " + parameter_name(spec.parameter) + " x " +
                std::to_string(spec.realizations) + " realizations), " + std::to_string(spec.base.nx) + " x " +
-               std::to_string(spec.base.ny) + " surfaces, model " + model_name(spec.scene.model);
+               std::to_string(spec.base.ny) + " surfaces, model " + (spec.hysteresis ? "hysteresis" : model_name(spec.scene.model));
   k.run = [spec](int i, int threads) { return run_roughness_point(spec, i, PETSC_COMM_SELF, threads); };
   k.describe = [](const nlohmann::json& r) {
     char b[160];

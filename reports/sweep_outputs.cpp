@@ -36,8 +36,8 @@ std::vector<double> step_values(const nlohmann::json& steps, const char* key) {
 
 const SweepTableLayout& coverage_layout() {
   static const SweepTableLayout l{"wetroad coverage sweep", "target",
-                                  {"coverage", "mu_peak", "mu_ratio", "area_at_peak", "area_normal", "mean_pool_depth",
-                                   "wet_sq"}};
+                                  {"coverage", "mu_peak", "mu_ratio", "mu_ratio_homogeneous", "area_at_peak", "area_normal",
+                                   "mean_pool_depth", "wet_sq"}};
   return l;
 }
 
@@ -71,7 +71,7 @@ void write_sweep_hdf5(const std::string& path, const nlohmann::json& sweep, cons
       w.write_vector(g + "/psd_q", r["psd"]["q"].get<std::vector<double>>());
       w.write_vector(g + "/psd_C", r["psd"]["C"].get<std::vector<double>>());
     }
-    if (r.contains("contact")) {
+    if (r.contains("contact") && r["contact"].contains("steps")) {  // contact models (hysteresis: none)
       const auto& steps = r["contact"]["steps"];
       for (const char* k : {"ux", "uz", "mu", "fz", "fx", "area_fraction"})
         w.write_vector(g + "/steps_" + k, step_values(steps, k));
@@ -139,10 +139,25 @@ std::vector<std::string> write_coverage_plots(const std::string& dir, const nloh
   const std::string ci = n > 1 ? " (mean, 95 % CI over " + std::to_string(n) + " realizations)" : "";
   const std::string model = sweep["spec"]["scene"]["model"].get<std::string>();
 
-  PlotSpec mu{"Wet / dry static friction against water coverage (model " + model + ")", "water coverage [%]",
-              "mu_wet / mu_dry [%]", false, false, {}};
-  mu.series.push_back({"mu_wet / mu_dry" + ci, cov, percent(column(table, "mu_ratio", "mean")), "",
-                       percent(column(table, "mu_ratio", "ci95"))});
+  const bool hysteresis = model == "hysteresis";
+  char title[160];
+  if (hysteresis)
+    std::snprintf(title, sizeof title, "Wet / dry hysteresis friction against water coverage (v = %.3g m/s)",
+                  num(sweep["spec"]["scene"]["speeds"][0]));
+  else
+    std::snprintf(title, sizeof title, "Wet / dry static friction against water coverage (model %s)", model.c_str());
+  PlotSpec mu{title, "water coverage [%]", "mu_wet / mu_dry [%]", false, false, {}};
+  mu.series.push_back({(hysteresis ? "local sealing" : "mu_wet / mu_dry") + ci, cov,
+                       percent(column(table, "mu_ratio", "mean")), "", percent(column(table, "mu_ratio", "ci95"))});
+  if (hysteresis) {
+    mu.series.push_back({"homogeneous sealing (PSD of the wet surface)" + ci, cov,
+                         percent(column(table, "mu_ratio_homogeneous", "mean")), "",
+                         percent(column(table, "mu_ratio_homogeneous", "ci95"))});
+    // What the thesis's text says of its Figure 5.25 (sec. 5.4.2; elastostatic friction, FEM):
+    // unchanged up to its drained limit of 40.45 %, one third of the dry value at 70 %.
+    mu.series.push_back({"thesis Fig. 5.25 as its text states it (elastostatic)", {0, 40.45, 70}, {100, 100, 100.0 / 3},
+                         "linespoints", {}});
+  }
   // The drained limit (mean over the realizations): beyond it the water stands.
   double limit = 0;
   int nl = 0;

@@ -199,3 +199,61 @@ TEST_F(Robust, SceneFilesFoundByTheFuzzerAreRefusedCleanly) {
 }
 
 }  // namespace
+
+// Issue 44, bar 6: every bad input of `wetroad friction` is one line naming the file or option,
+// exit 2, and no output.
+TEST_F(Robust, FrictionRefusesBadInputByName) {
+  const std::string out = " --json " + path("f.json") + " --out " + path("f.h5") + " --plot " + path("f.svg");
+  auto compound = [&](const std::string& name, const std::string& body) {
+    std::ofstream(path(name)) << body;
+  };
+  const std::string good_head = R"({"name": "x", "source": "test", "reference_temperature_c": 20,
+    "wlf": {"c1": 8.86, "c2_k": 101.6}, "poisson": 0.5, )";
+  compound("missing.json", R"({"name": "x", "source": "test", "reference_temperature_c": 20, "poisson": 0.5,
+    "prony": {"e_relaxed_pa": 3e6, "terms": [{"tau_s": 1e-6, "de_pa": 1e8}]}})");
+  compound("negative.json", good_head + R"("prony": {"e_relaxed_pa": 3e6, "terms": [{"tau_s": 1e-6, "de_pa": -1e8}]}})");
+  // E' falling with frequency while E'' peaks: no causal material.
+  compound("noncausal.json", good_head + R"("table": {"omega_rad_s": [1, 10, 100, 1000, 10000, 100000],
+    "storage_pa": [1e9, 5e8, 1e8, 3e7, 1e7, 5e6], "loss_pa": [1e6, 1e7, 1e8, 1e8, 1e7, 1e6]}})");
+  const std::string f = "friction " + path("a.h5") + out;
+  std::size_t before = count_entries();
+  expect_refused(f + " --compound " + path("missing.json"), "missing.json: missing key \"wlf\"");
+  expect_refused(f + " --compound " + path("negative.json"), "negative.json: prony.terms[0].de_pa must be a modulus >= 0 Pa");
+  expect_refused(f + " --compound " + path("noncausal.json"), "noncausal.json: table: not causal");
+  expect_refused(f + " --compound " + path("absent.json"), "absent.json: cannot open the compound file");
+  expect_refused(f + " --speeds 0.1 0", "--speeds: a sliding speed must be positive");
+  expect_refused(f + " --speeds -1", "--speeds: a sliding speed must be positive");
+  expect_refused(f + " --pressure 0", "--pressure: the nominal pressure must be a positive number");
+  expect_refused(f + " --pressure -3e5", "--pressure");
+  expect_refused(f + " --q1 10", "--q1: 10 1/m lies below the measured band of");
+  expect_refused(f + " --temperature -90", "--temperature: the WLF shift has its pole");
+  expect_refused(f + " --flash-temperature --compound " + path("negative.json"), "negative.json");
+  EXPECT_EQ(count_entries(), before);
+}
+
+// The command end to end on a synthesized surface and its wet version: the JSON carries the
+// issue's keys, the wet curves lie below the dry one, the flash temperature lowers mu at speed.
+TEST_F(Robust, FrictionDryAndWetEndToEnd) {
+  ASSERT_EQ(run("synth --size 64 --dx 1e-4 --h0 3e-4 --seed 2 -q -o " + path("s.h5")).code, 0);
+  ASSERT_EQ(run("fill " + path("s.h5") + " --limit -q -o " + path("w.h5")).code, 0);
+  const CliRun r = run("friction " + path("s.h5") + " --wet " + path("w.h5") +
+                       " --speeds 1e-3 0.1 17.9 --flash-temperature --json " + path("f.json") + " --out " + path("f.h5"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("f.json")));
+  for (const char* key : {"model", "compound", "temperature", "pressure", "q0", "q1", "extrapolated", "flash_temperature",
+                          "speeds", "peak", "sn64", "provenance", "validity", "wet", "q1_scan"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["model"], "hysteresis");
+  EXPECT_TRUE(j["extrapolated"].get<bool>());
+  ASSERT_EQ(j["speeds"].size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double dry = j["speeds"][i]["mu"], hom = j["wet"]["homogeneous"]["speeds"][i]["mu"],
+                 loc = j["wet"]["local"]["speeds"][i]["mu"];
+    EXPECT_GT(dry, 0);
+    EXPECT_LT(hom, dry);
+    EXPECT_LT(loc, dry);
+  }
+  EXPECT_GT(j["speeds"][2]["temperature_rise"].get<double>(), 1.0);
+  EXPECT_NEAR(j["sn64"].get<double>(), 100 * j["speeds"][2]["mu"].get<double>(), 1e-6 * j["sn64"].get<double>());
+  EXPECT_TRUE(fs::exists(path("f.h5")));
+}

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "lib/core/errors.hpp"
+#include "lib/sweep/hysteresis_run.hpp"
 #include "lib/sweep/sample_statistics.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/mpd.hpp"
@@ -28,7 +29,8 @@ void check_sweep_spec(const CoverageSweepSpec& s) {
   if (!s.synth && s.surface_path.empty()) throw InputError("--surface", "give a surface file or synthesis options");
   if (s.synth) validate(*s.synth);  // now, not when the first run starts
   if (s.connectivity != 4 && s.connectivity != 8) throw InputError("--connectivity", "must be 4 or 8");
-  check_contact_scene(s.scene);
+  if (s.hysteresis) check_friction_scene(*s.hysteresis);
+  else check_contact_scene(s.scene);
 }
 
 std::vector<CoverageRunKey> plan_runs(const CoverageSweepSpec& s) {
@@ -41,7 +43,7 @@ std::vector<CoverageRunKey> plan_runs(const CoverageSweepSpec& s) {
 nlohmann::json sweep_spec_json(const CoverageSweepSpec& s) {
   nlohmann::json j = {{"coverages", s.coverages},
                       {"realizations", s.realizations},
-                      {"scene", contact_scene_json(s.scene)},
+                      {"scene", s.hysteresis ? friction_scene_json(*s.hysteresis) : contact_scene_json(s.scene)},
                       {"tiling", s.tiling == Tiling::torus ? "torus" : "3x3"},
                       {"connectivity", s.connectivity}};
   if (s.synth) {
@@ -141,6 +143,15 @@ nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key) {
   rec["psd"] = {{"q", sp.psd.q}, {"C", sp.psd.C}};
 
   const auto t_contact = std::chrono::steady_clock::now();
+  if (spec_.hysteresis) {
+    const double coverage = rec["coverage"].get<double>();
+    rec["contact"] = hysteresis_contact_record(ground_, WetSurface{&wet, coverage}, *spec_.hysteresis, threads_);
+    rec["status"] = "ok";
+    rec["message"] = "";
+    rec["wall"] = {{"surface", wall_surface_}, {"water", wall_water}, {"contact", seconds_since(t_contact)},
+                   {"total", seconds_since(t0)}};
+    return rec;
+  }
   ContactScene scene = spec_.scene;
   scene.threads = threads_;
   // One penetration tolerance for the whole sweep: the ground's (ContactScene::max_penetration).
@@ -173,7 +184,7 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
   for (const auto& r : runs) by_target[r["target"].get<double>()].push_back(&r);
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& [target, list] : by_target) {
-    std::vector<double> mu, ratio, area_peak, area_normal, coverage, pool, sq;
+    std::vector<double> mu, ratio, ratio_hom, area_peak, area_normal, coverage, pool, sq;
     std::vector<int> indices;
     std::string water;
     int failed = 0;
@@ -189,6 +200,8 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
       // A ratio to a dry friction that is not positive means nothing (a scene without friction).
       const auto d = mu_dry.find((*r)["realization"].get<int>());
       if (d != mu_dry.end() && d->second > 0) ratio.push_back(m / d->second);
+      if (d != mu_dry.end() && d->second > 0 && (*r)["contact"].contains("mu_homogeneous"))
+        ratio_hom.push_back((*r)["contact"]["mu_homogeneous"].get<double>() / d->second);
       area_peak.push_back(get_number((*r)["contact"], "area_at_peak"));
       area_normal.push_back(get_number((*r)["contact"], "area_normal"));
       coverage.push_back(get_number(*r, "coverage"));
@@ -203,6 +216,7 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
                     {"failed", failed},
                     {"mu_peak", sample_statistics(mu)},
                     {"mu_ratio", sample_statistics(ratio)},
+                    {"mu_ratio_homogeneous", sample_statistics(ratio_hom)},
                     {"area_at_peak", sample_statistics(area_peak)},
                     {"area_normal", sample_statistics(area_normal)},
                     {"coverage", sample_statistics(coverage)},

@@ -32,6 +32,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lib/contact/contact_scene.hpp"
+#include "lib/friction/friction_scene.hpp"
 #include "roads/synthesize.hpp"
 #include "water/rain_fill.hpp"
 
@@ -42,7 +43,8 @@ struct CoverageSweepSpec {
   int realizations = 1;              // synthetic surfaces only
   std::optional<SynthParams> synth;  // synthetic surfaces (seed + r for realization r) ...
   std::string surface_path;          // ... or one surface file
-  ContactScene scene;
+  ContactScene scene;                     // the contact models (fem, spectral) ...
+  std::optional<FrictionScene> hysteresis;  // ... or the hysteresis model at its one speed
   Tiling tiling = Tiling::torus;
   int connectivity = 4;
 };
@@ -84,7 +86,8 @@ class CoverageRunner {
 
 // One row per target coverage: sample_statistics (lib/sweep/sample_statistics.hpp) of mu_peak,
 // mu_ratio (mu / the same realization's dry mu), area at the peak and after the normal load,
-// achieved coverage, mean pool depth and wet rms height; n counts the runs that finished. mu_ratio leaves out realizations whose dry mu is not positive
+// achieved coverage, mean pool depth and wet rms height (with the hysteresis model also
+// mu_ratio_homogeneous, the homogeneous sealing model's ratio; mu_ratio is the local model's); n counts the runs that finished. mu_ratio leaves out realizations whose dry mu is not positive
 // (its n says how many remain). Runs are records as above, in any order.
 nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs);
 

@@ -10,6 +10,7 @@
 
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/core/errors.hpp"
+#include "lib/sweep/hysteresis_run.hpp"
 #include "lib/sweep/sample_statistics.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/mpd.hpp"
@@ -77,7 +78,8 @@ void check_roughness_spec(const RoughnessSweepSpec& s) {
     if (!ok) throw InputError("--values", std::string("a value out of range for ") + parameter_name(s.parameter));
   }
   if (s.realizations < 1) throw InputError("--realizations", "must be >= 1");
-  check_contact_scene(s.scene);
+  if (s.hysteresis) check_friction_scene(*s.hysteresis);
+  else check_contact_scene(s.scene);
   // Every surface the sweep will synthesize, checked now rather than when its run starts.
   for (double v : s.values) {
     SynthParams p = s.base;
@@ -100,7 +102,7 @@ nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s) {
            {{"nx", p.nx}, {"ny", p.ny}, {"dx", p.dx}, {"h0", p.h0}, {"hurst", p.hurst}, {"q0_ratio", p.q0_ratio},
             {"q1", p.q1 ? nlohmann::json(*p.q1) : nlohmann::json(nullptr)}, {"q1_fraction", p.q1_fraction},
             {"oversample", p.oversample}, {"sampling", sampling_name(p.sampling)}, {"seed", p.seed}}},
-          {"scene", contact_scene_json(s.scene)}};
+          {"scene", s.hysteresis ? friction_scene_json(*s.hysteresis) : contact_scene_json(s.scene)}};
 }
 
 namespace {
@@ -124,6 +126,14 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
   rec["mpd_note"] = mpd.note;
   const double wall_surface = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
+  if (s.hysteresis) {
+    rec["contact"] = hysteresis_contact_record(m, std::nullopt, *s.hysteresis, threads);
+    rec["quartic"] = nullptr;
+    rec["status"] = "ok";
+    rec["message"] = "";
+    rec["wall"] = {{"surface", wall_surface}, {"contact", seconds_since(t1)}, {"total", seconds_since(t0)}};
+    return rec;
+  }
   ContactScene scene = s.scene;
   scene.threads = threads;
   const SceneResult c = run_contact_scene_caught(m, scene, comm);

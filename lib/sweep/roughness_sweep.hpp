@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lib/contact/contact_scene.hpp"
+#include "lib/friction/friction_scene.hpp"
 #include "roads/synthesize.hpp"
 
 namespace wr {
@@ -36,7 +37,8 @@ struct RoughnessSweepSpec {
   std::vector<double> values;
   SynthParams base;           // the surface's other parameters; seed of realization 0
   int realizations = 10;
-  ContactScene scene;
+  ContactScene scene;                     // the contact models (fem, spectral) ...
+  std::optional<FrictionScene> hysteresis;  // ... or the hysteresis model at its one speed
 };
 
 const char* parameter_name(RoughnessParameter p);  // "h0", "hurst", "q1_fraction"
