@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "bench/bench_friction.hpp"
 #include "bench/bench_harness.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
@@ -29,6 +30,8 @@ struct BenchCli {
   std::string json;
   std::string plot;  // SVG chart, where a bench draws one
   std::size_t water_n = 1024;
+  std::size_t friction_n = 4096;
+  int friction_speeds = 30;
   std::vector<int> hertz_meshes = {32, 64, 128};
   double hertz_radius = 0.1, hertz_uz = 6e-5;
   int hertz_layers = 8;
@@ -94,6 +97,24 @@ int run_summits(const BenchCli& c) {
                 r["eq45_var_at_measured_alpha"].get<double>(), r["ks_distance"].get<double>());
   std::printf("  (alpha: prescribed continuous PSD; alpha_m: measured on the lattice; (m): eq. 4.5 at alpha_m)\n");
   if (!c.json.empty()) write_text_atomically(c.json, rows.dump(2) + "\n");
+  return 0;
+}
+
+int run_friction(const BenchCli& c) {
+  const auto r = bench::friction_speed(c.friction_n, c.friction_speeds, c.repeats, c.threads);
+  std::printf("hysteresis friction on a %zu x %zu default-like surface, %d speeds 1e-6 ... 100 m/s, %s threads\n",
+              c.friction_n, c.friction_n, c.friction_speeds, c.threads > 0 ? std::to_string(c.threads).c_str() : "all");
+  std::printf("  spectrum (FFT, radial PSD, fit)   %8.4f s\n", r["psd_seconds"].get<double>());
+  std::printf("  mu(v), isothermal                 %8.4f s  (peak mu %.4f)\n", r["curve_seconds"].get<double>(),
+              r["peak_mu_isothermal"].get<double>());
+  std::printf("  mu(v), flash temperature          %8.4f s  (peak mu %.4f)\n", r["curve_flash_seconds"].get<double>(),
+              r["peak_mu_flash"].get<double>());
+  std::printf("  speed against accuracy (isothermal; error against 400 points per decade):\n");
+  std::printf("    %18s %10s %18s\n", "points per decade", "seconds", "max rel. error");
+  for (const auto& row : r["accuracy_ladder"])
+    std::printf("    %18d %10.5f %18.2e\n", row["points_per_decade"].get<int>(), row["seconds"].get<double>(),
+                row["max_relative_error"].get<double>());
+  if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
   return 0;
 }
 
@@ -438,6 +459,12 @@ Command add_bench(CLI::App& root) {
   CLI::App* wa = b->add_subcommand("water", "Speed and memory of the water module (drained limit, hierarchy, rain depths).");
   wa->add_option("--size", c->water_n, "grid size N")->capture_default_str();
   wa->add_option("--json", c->json, "write the results as JSON");
+  CLI::App* fr = b->add_subcommand("friction", "Speed and accuracy of the hysteresis model: mu at S speeds from an N x N PSD.");
+  fr->add_option("--size", c->friction_n, "grid size N")->capture_default_str();
+  fr->add_option("--speeds", c->friction_speeds, "number of speeds")->capture_default_str();
+  fr->add_option("--repeat", c->repeats, "repetitions; the best time is reported")->capture_default_str();
+  fr->add_option("--threads", c->threads, "worker threads (default: all hardware threads)");
+  fr->add_option("--json", c->json, "write the results as JSON");
   CLI::App* co = b->add_subcommand("coverage", "Drained-limit coverage of the default surface over seeds (4 and 8 connectivity).");
   co->add_option("--seeds", c->seeds, "realizations")->capture_default_str();
   co->add_option("--json", c->json, "write the results as JSON");
@@ -513,7 +540,7 @@ Command add_bench(CLI::App& root) {
   st->add_option("--refines", c->spot_refines, "face refinements")->capture_default_str();
   st->add_option("--layers", c->spot_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
   st->add_option("--json", c->json, "write the results as JSON");
-  return {b, [c, sp, su, wa, co, he, ss, sh, ka, vs, ac, mc, st] {
+  return {b, [c, sp, su, wa, fr, co, he, ss, sh, ka, vs, ac, mc, st] {
             // Benchmarks write at their end, after minutes: try the outputs first (the writers
             // then write them atomically, each on its own).
             OutputSet preflight(false);
@@ -529,6 +556,7 @@ Command add_bench(CLI::App& root) {
             if (sh->parsed()) return run_spectral_shear(*c);
             if (ka->parsed()) return run_kappa(*c);
             if (sp->parsed()) return run_speed(*c);
+            if (fr->parsed()) return run_friction(*c);
             if (su->parsed()) return run_summits(*c);
             if (wa->parsed()) return run_water(*c);
             if (co->parsed()) return run_coverage(*c);

@@ -211,7 +211,7 @@ Command add_friction(CLI::App& root) {
   c->speeds_opt = s->add_option("--speeds", c->speeds, "sliding speeds in m/s");
   c->range_opt = s->add_option("--speed-range", c->speed_range, "A B N: N speeds log-spaced from A to B m/s (default 1e-6 100 33)")
                      ->expected(3);
-  c->q1_opt = s->add_option("--q1", c->q1, "short-wavelength cut-off in 1/m (default: 10x the map's last resolved wavenumber)");
+  c->q1_opt = s->add_option("--q1", c->q1, "short-wavelength cut-off in 1/m (default 2 pi / 20 um = 3.14e5, or the map's last resolved wavenumber if larger)");
   s->add_flag("--flash-temperature", c->flash, "heat the rubber at each scale by the power the coarser scales dissipate");
   s->add_option("--points-per-decade", c->points_per_decade, "q quadrature nodes per decade")->capture_default_str();
   s->add_option("--json", c->json, "write the result as JSON (SI units)");

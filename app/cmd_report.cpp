@@ -4,6 +4,7 @@
 
 #include "app/commands.hpp"
 #include "lib/core/errors.hpp"
+#include "lib/friction/friction_file.hpp"
 #include "lib/io/output_set.hpp"
 #include "reports/sweep_outputs.hpp"
 #include "reports/html_report.hpp"
@@ -12,7 +13,7 @@ namespace wr::app {
 namespace {
 
 struct ReportCli {
-  std::vector<std::string> sweeps;
+  std::vector<std::string> sweeps, friction;
   std::string measured, output, title = "wetroad report: wet friction";
   double ifi_a = 0, ifi_b = 0, ifi_c = 0, ifi_tx = 0;
   CLI::Option *ifi_a_opt = nullptr, *ifi_b_opt = nullptr, *ifi_c_opt = nullptr, *ifi_tx_opt = nullptr;
@@ -29,11 +30,13 @@ int run_report(const ReportCli& c) {
     throw InputError("--ifi-c", "--ifi-c and --ifi-tx go together (the ribbed-tyre term C Tx)");
   OutputSet outputs;
   for (const auto& s : c.sweeps) outputs.input(s);
+  for (const auto& f : c.friction) outputs.input(f);
   outputs.input(c.measured);
   const std::string out_path = outputs.add("--output", c.output);
   ReportInput in;
   in.title = c.title;
   for (const auto& s : c.sweeps) in.sweeps.emplace_back(s, read_any_sweep_hdf5(s));
+  for (const auto& f : c.friction) in.friction.emplace_back(f, read_friction_summary(f));
   if (!c.measured.empty()) {
     in.measured = read_measured_skid_csv(c.measured);
     in.measured_path = c.measured;
@@ -42,8 +45,8 @@ int run_report(const ReportCli& c) {
   write_html_report(out_path, in);
   outputs.commit();
   if (!c.quiet)
-    std::printf("wrote %s: %zu sweep(s)%s; open it in any browser (self-contained, offline)\n", c.output.c_str(),
-                in.sweeps.size(), in.measured.empty() ? "" : ", measured skid numbers");
+    std::printf("wrote %s: %zu sweep(s), %zu friction result(s)%s; open it in any browser (self-contained, offline)\n",
+                c.output.c_str(), in.sweeps.size(), in.friction.size(), in.measured.empty() ? "" : ", measured skid numbers");
   return 0;
 }
 
@@ -55,11 +58,14 @@ Command add_report(CLI::App& root) {
   s->footer(
       "One HTML file with the charts (gnuplot SVG, embedded), tables, the validity flags of every run and\n"
       "the source of every number (sweep file and run group). With --measured, the skid-number comparison:\n"
-      "predicted SN40R = 100 mu against MPD next to the measured sites, the MPD of each peak, and the IFI\n"
-      "speed constant Sp = 14.2 + 89.7 MPD per site (F60 too when the device constants are given).\n"
-      "Example: wetroad report --sweep sweep.h5 --measured sites.csv -o report.html");
+      "predicted SN40R against MPD from hysteresis sweeps (100 mu at 17.9 m/s, and by the IFI route), the\n"
+      "elastostatic 100 mu of contact-model sweeps as its own series (not a skid number), the measured\n"
+      "sites, the MPD of each peak, and the IFI speed constant Sp = 14.2 + 89.7 MPD per site (F60 too when\n"
+      "the device constants are given). --friction adds the mu(v) curves of `wetroad friction --out`.\n"
+      "Example: wetroad report --sweep sweep.h5 --friction mu.h5 --measured sites.csv -o report.html");
   s->add_option("--sweep", c->sweeps, "sweep result (sweep-coverage or sweep-roughness --out); repeatable")
-      ->required()
+      ->check(CLI::ExistingFile);
+  s->add_option("--friction", c->friction, "hysteresis friction result (wetroad friction --out): mu(v) dry/wet; repeatable")
       ->check(CLI::ExistingFile);
   s->add_option("--measured", c->measured, "measured skid numbers: CSV site,mpd_mm,sn40r[,speed_kmh]")
       ->check(CLI::ExistingFile);

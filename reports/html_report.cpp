@@ -12,6 +12,8 @@
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "reports/friction_section.hpp"
+#include "reports/html_parts.hpp"
 #include "reports/sweep_outputs.hpp"
 #include "reports/plot.hpp"
 #include "wetroad/version.hpp"
@@ -19,29 +21,14 @@
 namespace wr {
 namespace {
 
+using html::escape;
+using html::figure;
+using html::fmt;
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kSkidSpeed = 64.0;  // km/h: SN40R is measured at 40 mph
 
 double num(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : kNaN; }
-
-std::string escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else if (c == '"') o += "&quot;";
-    else o += c;
-  }
-  return o;
-}
-
-std::string fmt(double v, const char* f = "%.4g") {
-  if (!std::isfinite(v)) return "&ndash;";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 std::vector<std::string> split_csv_line(const std::string& line) {
   std::vector<std::string> out(1);
@@ -54,21 +41,6 @@ std::vector<std::string> split_csv_line(const std::string& line) {
     s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
   }
   return out;
-}
-
-// The SVG text of a chart written by gnuplot, without its XML prolog, for inline embedding.
-std::string inline_svg(const std::string& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  std::string t = s.str();
-  const auto at = t.find("<svg");
-  if (at == std::string::npos) throw std::runtime_error(file + ": not an SVG chart");
-  return t.substr(at);
-}
-
-std::string figure(const std::string& svg_file, const std::string& caption) {
-  return "<figure>" + inline_svg(svg_file) + "<figcaption>" + caption + "</figcaption></figure>\n";
 }
 
 std::string validity_section(const std::string& file, const nlohmann::json& sweep) {
@@ -190,12 +162,21 @@ std::string scene_html(const std::string& file, const nlohmann::json& sweep) {
     row("surface", escape(s.value("path", "")));
   row("realizations", std::to_string(sp["realizations"].get<int>()));
   row("model", escape(sc["model"].get<std::string>()));
-  row("scene", "uz " + fmt(num(sc["uz"])) + " m in " + fmt(num(sc["normal_steps"]), "%.0f") + " steps, then ux " +
-                   fmt(num(sc["ux"])) + " m in " + fmt(num(sc["shear_steps"]), "%.0f") + " steps; E " + fmt(num(sc["E"])) +
-                   " Pa, &nu; " + fmt(num(sc["nu"])) + ", refine " + fmt(num(sc["refine"]), "%.0f") + ", tolerance " +
-                   fmt(num(sc["tolerance"])) +
-                   (sc.value("facet_normals", false) ? "; contact forces along the obstacle facets' normals"
-                                                     : "; contact forces along the blended obstacle normals"));
+  if (sc["model"] == "hysteresis") {
+    const auto& c = sc["compound"];
+    row("scene", "hysteresis friction (Persson) at v " + fmt(num(sc["speeds"][0]), "%.3g") + " m/s, sigma0 " +
+                     fmt(num(sc["pressure"])) + " Pa, T " + fmt(num(sc["temperature"]), "%.1f") + " C, flash temperature " +
+                     (sc.value("flash_temperature", false) ? "on" : "off") + "; compound " +
+                     escape(c.value("name", std::string("?"))) +
+                     (c.value("synthetic", false) ? " <span class=\"flag\">(SYNTHETIC)</span>" : ""));
+  } else {
+    row("scene", "uz " + fmt(num(sc["uz"])) + " m in " + fmt(num(sc["normal_steps"]), "%.0f") + " steps, then ux " +
+                     fmt(num(sc["ux"])) + " m in " + fmt(num(sc["shear_steps"]), "%.0f") + " steps; E " + fmt(num(sc["E"])) +
+                     " Pa, &nu; " + fmt(num(sc["nu"])) + ", refine " + fmt(num(sc["refine"]), "%.0f") + ", tolerance " +
+                     fmt(num(sc["tolerance"])) +
+                     (sc.value("facet_normals", false) ? "; contact forces along the obstacle facets' normals"
+                                                       : "; contact forces along the blended obstacle normals"));
+  }
   if (sp.contains("tiling"))
     row("water", "drainage " + escape(sp["tiling"].get<std::string>()) + ", " + fmt(num(sp["connectivity"]), "%.0f") +
                      "-connected; drained fills up to the drained limit, standing water beyond");
@@ -213,15 +194,30 @@ struct Point {
   std::string source;
 };
 
-// Predicted SN40R = 100 mu of the drained (skid-test) road: per realization, the run at the
-// largest drained coverage (the dry run when there is none).
-std::vector<Point> predicted_points(const std::string& file, const nlohmann::json& sweep) {
-  std::vector<Point> pts;
-  if (sweep.value("kind", "") == "roughness") {  // every surface of the sweep, dry
+// The predicted skid numbers of one sweep, as labelled series: the hysteresis model's SN40R
+// (100 mu at the sweep's speed, normally 17.9 m/s) and its IFI route (100 mu at 20 km/h carried
+// to 64 km/h by exp(-(64 - 20)/Sp), Sp = 14.2 + 89.7 MPD); a contact model's 100 mu is the
+// elastostatic friction, kept as its own series and never called a skid number.
+struct PredictedSeries {
+  std::string label;
+  bool skid_number = false;
+  std::vector<Point> points;
+};
+
+double ifi_route_sn(double mu_low, double mpd_mm) {
+  const double sp = 14.2 + 89.7 * mpd_mm;
+  return 100 * mu_low * std::exp(-(kSkidSpeed - 20) / sp);
+}
+
+// The runs that stand for the road in a skid test: every surface of a roughness sweep (dry); in
+// a coverage sweep per realization the run at the largest drained coverage (the wet road a
+// skid tester leaves behind; the dry run when there is none).
+std::vector<const nlohmann::json*> skid_runs(const nlohmann::json& sweep) {
+  std::vector<const nlohmann::json*> out;
+  if (sweep.value("kind", "") == "roughness") {
     for (const auto& r : sweep["runs"])
-      if (r.value("status", "") == "ok")
-        pts.push_back({1e3 * num(r["mpd"]), 100 * num(r["contact"]["mu_peak"]), file + " " + run_group(r["index"].get<int>())});
-    return pts;
+      if (r.value("status", "") == "ok") out.push_back(&r);
+    return out;
   }
   std::map<int, const nlohmann::json*> pick;
   for (const auto& r : sweep["runs"]) {
@@ -229,28 +225,54 @@ std::vector<Point> predicted_points(const std::string& file, const nlohmann::jso
     const int z = r["realization"].get<int>();
     if (!pick.count(z) || num(r["target"]) > num((*pick[z])["target"])) pick[z] = &r;
   }
-  for (const auto& [z, r] : pick)
-    pts.push_back({1e3 * num((*r)["ground_mpd"]), 100 * num((*r)["contact"]["mu_peak"]),
-                   file + " " + run_group((*r)["index"].get<int>())});
-  return pts;
+  for (const auto& [z, r] : pick) out.push_back(r);
+  return out;
+}
+
+std::vector<PredictedSeries> predicted_series(const std::string& file, const nlohmann::json& sweep) {
+  const bool roughness = sweep.value("kind", "") == "roughness";
+  const auto& sc = sweep["spec"]["scene"];
+  const bool hysteresis = sc.value("model", "") == "hysteresis";
+  const std::string which = roughness ? ", dataset " + sweep["spec"].value("dataset", std::string("?")) : ", coverage sweep";
+  std::vector<PredictedSeries> out;
+  if (hysteresis) {
+    const std::string flash = sc.value("flash_temperature", false) ? "flash temperature on" : "isothermal";
+    out.push_back({"hysteresis, 100 mu at " + fmt(num(sc["speeds"][0]), "%.3g") + " m/s (" + flash + ")" + which, true, {}});
+    out.push_back({"hysteresis, IFI route" + which, true, {}});
+  } else {
+    out.push_back({"elastostatic 100 mu (" + sc.value("model", std::string("?")) + "), not a skid number" + which, false, {}});
+  }
+  for (const nlohmann::json* r : skid_runs(sweep)) {
+    const double mpd = 1e3 * num(roughness ? (*r)["mpd"] : (*r)["ground_mpd"]);
+    const std::string src = file + " " + run_group((*r)["index"].get<int>());
+    out[0].points.push_back({mpd, 100 * num((*r)["contact"]["mu_peak"]), src});
+    if (hysteresis) out[1].points.push_back({mpd, ifi_route_sn(num((*r)["contact"]["mu_low_speed"]), mpd), src});
+  }
+  return out;
 }
 
 std::string skid_section(const ReportInput& in, const std::string& chart_dir) {
-  std::vector<Point> pred;
+  std::vector<PredictedSeries> all;
   for (const auto& [file, sweep] : in.sweeps)
-    for (const auto& p : predicted_points(file, sweep)) pred.push_back(p);
+    for (auto& p : predicted_series(file, sweep)) all.push_back(std::move(p));
   std::ostringstream o;
   o << "<h2>Skid number against mean profile depth</h2>\n"
-       "<p>Predicted SN40R = 100 &mu;, &mu; the static (elastostatic) friction of the shear test: for coverage "
-       "sweeps on the drained wet road (largest drained coverage of each realization), for roughness sweeps on each "
-       "surface; MPD of the dry surface per ISO 13473-1.</p>\n";
+       "<p>Predicted SN40R (ASTM E274, locked wheel at 64 km/h on the wetted road) from the hysteresis model: "
+       "SN40R = 100 &mu; at 17.9 m/s (Persson's theory with the sealing of the pools, <code>--model hysteresis</code>), and "
+       "by the IFI route: the model's low-speed &mu; at 20 km/h carried to 64 km/h with the speed constant "
+       "Sp = 14.2 + 89.7 MPD (ASTM E1960). Each point is the wet road a skid tester leaves: the surface at its "
+       "drained limit with the pools sealed (local model; for a coverage sweep its largest drained coverage). The elastostatic &mu; of a contact-model sweep is the FEM's interlocking "
+       "resistance of a frictionless block, a different mechanism: it is shown as its own series and is not a skid "
+       "number. MPD of the dry surface per ISO 13473-1.</p>\n";
   PlotSpec spec{"SN40R against MPD", "MPD [mm]", "SN40R", false, false, {}};
-  PlotSeries ps{"predicted (100 mu)", {}, {}, "points", {}};
-  for (const auto& p : pred) {
-    ps.x.push_back(p.mpd_mm);
-    ps.y.push_back(p.sn);
+  for (const auto& ps : all) {
+    PlotSeries s{ps.label, {}, {}, "points", {}};
+    for (const auto& p : ps.points) {
+      s.x.push_back(p.mpd_mm);
+      s.y.push_back(p.sn);
+    }
+    spec.series.push_back(s);
   }
-  spec.series.push_back(ps);
   if (!in.measured.empty()) {
     PlotSeries ms{"measured (" + in.measured_path + ")", {}, {}, "points", {}};
     for (const auto& m : in.measured) {
@@ -262,22 +284,32 @@ std::string skid_section(const ReportInput& in, const std::string& chart_dir) {
   const std::string chart = chart_dir + "/skid.svg";
   write_svg_plot(chart, spec);
   o << figure(chart, "Predicted and measured skid numbers against MPD.");
-  auto peak_line = [&](const char* what, const std::vector<double>& x, const std::vector<double>& y) {
+  auto peak_line = [&](const std::string& what, const std::vector<double>& x, const std::vector<double>& y) {
     if (x.empty()) return std::string();
     const PeakEstimate p = peak_position(x, y);
-    return std::string("<li>") + what + ": peak at MPD " + fmt(p.mpd_mm, "%.3g mm") + " (SN40R " + fmt(p.value, "%.1f") +
-           ", " + p.method + " over " + std::to_string(x.size()) + " points)</li>";
+    return "<li>" + escape(what) + ": peak at MPD " + fmt(p.mpd_mm, "%.3g mm") + " (" + fmt(p.value, "%.1f") + ", " +
+           p.method + " over " + std::to_string(x.size()) + " points)</li>";
   };
   std::vector<double> mx, my;
   for (const auto& m : in.measured) {
     mx.push_back(m.mpd_mm);
     my.push_back(m.sn40r);
   }
-  o << "<ul>" << peak_line("measured", mx, my) << peak_line("predicted", ps.x, ps.y) << "</ul>\n";
-  o << "<table><tr><th>predicted point</th><th>MPD [mm]</th><th>SN40R</th></tr>";
-  for (const auto& p : pred)
-    o << "<tr><td class=\"src\">" << escape(p.source) << "</td><td>" << fmt(p.mpd_mm, "%.3f") << "</td><td>"
-      << fmt(p.sn, "%.1f") << "</td></tr>";
+  o << "<ul>" << peak_line("measured", mx, my);
+  for (const auto& ps : all) {
+    std::vector<double> x, y;
+    for (const auto& p : ps.points) {
+      x.push_back(p.mpd_mm);
+      y.push_back(p.sn);
+    }
+    o << peak_line(ps.label, x, y);
+  }
+  o << "</ul>\n";
+  o << "<table><tr><th>predicted point</th><th>series</th><th>MPD [mm]</th><th>SN40R (or 100 &mu;)</th></tr>";
+  for (const auto& ps : all)
+    for (const auto& p : ps.points)
+      o << "<tr><td class=\"src\">" << escape(p.source) << "</td><td class=\"src\">" << escape(ps.label) << "</td><td>"
+        << fmt(p.mpd_mm, "%.3f") << "</td><td>" << fmt(p.sn, "%.1f") << "</td></tr>";
   o << "</table>\n";
   if (!in.measured.empty()) {
     o << "<table><tr><th>site (" << escape(in.measured_path) << ")</th><th>MPD [mm]</th><th>SN40R</th><th>speed [km/h]</th>"
@@ -385,7 +417,9 @@ PeakEstimate peak_position(const std::vector<double>& x, const std::vector<doubl
 }
 
 void write_html_report(const std::string& path, const ReportInput& in) {
-  if (in.sweeps.empty()) throw InputError("--sweep", "give at least one sweep (wetroad sweep-coverage or sweep-roughness --out)");
+  if (in.sweeps.empty() && in.friction.empty())
+    throw InputError("--sweep", "give at least one sweep (wetroad sweep-coverage or sweep-roughness --out) or friction "
+                                "result (wetroad friction --out)");
   const std::string charts = temporary_sibling(path) + ".charts";
   std::filesystem::create_directories(charts);
   std::ostringstream o;
@@ -395,6 +429,8 @@ void write_html_report(const std::string& path, const ReportInput& in) {
       << "<p>Written by wetroad " << kVersion << " on " << utc_now_iso8601()
       << ". Charts are drawn by gnuplot and embedded; the file needs nothing else.</p>\n";
     int k = 0;
+    for (const auto& [file, summary] : in.friction)
+      o << friction_section_html(file, summary, charts + "/friction" + std::to_string(k++));
     for (const auto& [file, sweep] : in.sweeps) {
       const std::string dir = charts + "/sweep" + std::to_string(k++);
       if (sweep.value("kind", "") == "roughness") {
@@ -416,7 +452,7 @@ void write_html_report(const std::string& path, const ReportInput& in) {
         << figure(files[3], "Mean depth of the water pools.")
         << figure(files[2], "Radial PSD of the wet surfaces: pools flatten the texture (thesis Figure 5.26).");
     }
-    o << skid_section(in, charts);
+    if (!in.sweeps.empty()) o << skid_section(in, charts);
     o << "</body></html>\n";
   } catch (...) {
     std::filesystem::remove_all(charts);

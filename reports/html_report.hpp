@@ -3,7 +3,8 @@
 // no external reference, readable offline) from coverage and roughness sweeps
 // (reports/sweep_outputs.hpp, read_any_sweep_hdf5) and, optionally, measured skid numbers.
 //
-// Sections: the scene and model of every sweep with the validity flags of every run; for a
+// Sections: the hysteresis friction mu(v) of every friction result (reports/friction_section);
+// the scene and model of every sweep with the validity flags of every run; for a
 // coverage sweep friction and contact area against water coverage (Figure 5.25), the wet PSDs
 // (Figure 5.26) and the pool depth; for a roughness sweep mu, A/A0 and kappa against the swept
 // parameter beside the thesis's Tables D and C.1; each with its table; the skid-number
@@ -38,6 +39,7 @@ struct IfiConstants {
 
 struct ReportInput {
   std::vector<std::pair<std::string, nlohmann::json>> sweeps;  // file, read_sweep_hdf5(, coverage_layout())
+  std::vector<std::pair<std::string, nlohmann::json>> friction;  // file, its summary (wetroad friction --out)
   std::vector<MeasuredSkid> measured;
   std::string measured_path;
   std::optional<IfiConstants> ifi;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "lib/core/errors.hpp"
 #include "lib/io/hdf5_file.hpp"
 
 namespace wr {
@@ -56,6 +57,23 @@ void write_friction_file(const std::string& path, const FrictionRun& r, const nl
   w.write_text("/summary", summary.dump());
   w.write_attr("/", "provenance", provenance.dump());
   w.commit();
+}
+
+}  // namespace wr
+
+namespace wr {
+
+nlohmann::json read_friction_summary(const std::string& path) {
+  Hdf5Reader r(path);
+  if (!r.has_dataset("/summary") || !r.has_group("/dry"))
+    throw InputError(path, "not a friction result (written by `wetroad friction --out`)");
+  try {
+    nlohmann::json j = nlohmann::json::parse(r.read_text("/summary"));
+    if (j.value("model", "") != "hysteresis") throw InputError(path, "not a friction result (model is not hysteresis)");
+    return j;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path, std::string("corrupt /summary: ") + e.what());
+  }
 }
 
 }  // namespace wr

@@ -16,3 +16,11 @@ void write_friction_file(const std::string& path, const FrictionRun& r, const nl
                          const nlohmann::json& provenance);
 
 }  // namespace wr
+
+namespace wr {
+
+// The /summary JSON of a file written by write_friction_file (InputError naming the file when it
+// is not one).
+nlohmann::json read_friction_summary(const std::string& path);
+
+}  // namespace wr

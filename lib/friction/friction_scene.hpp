@@ -48,7 +48,7 @@ struct FrictionScene {
   Compound compound;
   std::string compound_path;     // "" for the built-in default
   FrictionOptions options;       // pressure, temperature, quadrature, flash temperature, threads
-  std::optional<double> q1;      // 1/m; absent: kDefaultQ1Decades beyond the measured band
+  std::optional<double> q1;      // 1/m; absent: max(kDefaultQ1, the map's last resolved wavenumber)
   std::vector<double> speeds;    // m/s, > 0
 };
 

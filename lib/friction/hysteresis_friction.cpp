@@ -12,8 +12,9 @@
 namespace wr {
 namespace {
 
-// Nodes uniform in ln q on each segment between breakpoints (the measured band's end is one, so
-// the extension's change of law never falls inside an interval).
+// Nodes uniform in ln q on each segment between breakpoints (the tabulated nodes and the measured
+// band's end, so neither a kink of the table nor the extension's change of law falls inside an
+// interval); at least two intervals per segment.
 struct LogGrid {
   std::vector<double> q;             // nodes
   std::vector<std::size_t> seg_end;  // index of each segment's last node
@@ -22,20 +23,24 @@ struct LogGrid {
 };
 
 LogGrid make_grid(const RoughnessSpectrum& psd, int per_decade) {
+  // Breakpoints: every tabulated node (C is a power law between them, so the integrands are
+  // smooth on each segment), the end of the measured band, and q1.
   std::vector<double> breaks = {psd.q_start};
-  if (psd.extrapolated() && psd.q_measured > psd.q_start) breaks.push_back(psd.q_measured);
-  breaks.push_back(psd.q_end);
+  for (double x : psd.q)
+    if (x > breaks.back() * (1 + 1e-9) && x < std::min(psd.q_measured, psd.q_end) * (1 - 1e-9)) breaks.push_back(x);
+  if (psd.extrapolated() && psd.q_measured > breaks.back()) breaks.push_back(psd.q_measured);
+  if (psd.q_end > breaks.back()) breaks.push_back(psd.q_end);
   LogGrid g;
   g.q.push_back(psd.q_start);
   for (std::size_t b = 1; b < breaks.size(); ++b) {
     const double a = std::log(breaks[b - 1]), z = std::log(breaks[b]);
-    const int n = std::max(4, static_cast<int>(std::ceil(per_decade * (z - a) / std::log(10.0))));
+    const int n = std::max(2, static_cast<int>(std::ceil(per_decade * (z - a) / std::log(10.0))));
     const double h = (z - a) / n;
     for (int k = 1; k <= n; ++k) g.q.push_back(k == n ? breaks[b] : std::exp(a + k * h));
     g.seg_end.push_back(g.q.size() - 1);
     g.seg_h.push_back(h);
   }
-  g.measured_end = psd.extrapolated() ? g.seg_end.front() : g.q.size() - 1;
+  g.measured_end = psd.extrapolated() && g.seg_end.size() >= 2 ? g.seg_end[g.seg_end.size() - 2] : g.q.size() - 1;
   return g;
 }
 

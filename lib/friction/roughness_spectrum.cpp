@@ -13,15 +13,34 @@ struct Nodes {
   std::vector<double> q, C;
 };
 
+// The radial PSD's bins (count > 0, 0 < q <= nyquist, C > 0) averaged over cells of
+// 1/kLogBinsPerDecade decade in ln q, each bin weighted by its coefficient count: C at the
+// count-weighted geometric mean q of the cell. The linear bins crowd at high q, where their
+// scatter is estimator noise; the average keeps the power (sum of count x C) of every cell.
 Nodes measured_nodes(const RadialPsd& psd, double nyquist) {
   Nodes n;
-  for (std::size_t i = 0; i < psd.q.size(); ++i) {
-    if (psd.count[i] > 0 && psd.q[i] > 0 && psd.q[i] <= nyquist * (1 + 1e-12) && psd.C[i] > 0 &&
-        std::isfinite(psd.C[i])) {
-      n.q.push_back(psd.q[i]);
-      n.C.push_back(psd.C[i]);
+  double cell = -1, wsum = 0, lq = 0, csum = 0;
+  auto flush = [&] {
+    if (wsum > 0) {
+      n.q.push_back(std::exp(lq / wsum));
+      n.C.push_back(csum / wsum);
     }
+    wsum = lq = csum = 0;
+  };
+  for (std::size_t i = 0; i < psd.q.size(); ++i) {
+    if (!(psd.count[i] > 0 && psd.q[i] > 0 && psd.q[i] <= nyquist * (1 + 1e-12) && psd.C[i] > 0 &&
+          std::isfinite(psd.C[i])))
+      continue;
+    const double c = std::floor(std::log10(psd.q[i]) * kLogBinsPerDecade);
+    if (c != cell) {
+      flush();
+      cell = c;
+    }
+    wsum += psd.count[i];
+    lq += psd.count[i] * std::log(psd.q[i]);
+    csum += psd.count[i] * psd.C[i];
   }
+  flush();
   return n;
 }
 
@@ -64,7 +83,7 @@ RoughnessSpectrum spectrum_from_psd(const RadialPsd& psd, double nyquist, const 
   s.C = std::move(n.C);
   s.q_start = s.q.front();
   s.q_measured = s.q.back();
-  s.q_end = q1 ? *q1 : s.q_measured * std::pow(10.0, kDefaultQ1Decades);
+  s.q_end = q1 ? *q1 : std::max(kDefaultQ1, s.q_measured);
   if (!std::isfinite(s.q_end) || s.q_end <= s.q[1])
     throw InputError("--q1", number_text(s.q_end) + " 1/m lies below the measured band of " + source + " (" +
                                  number_text(s.q[1]) + " ... " + number_text(s.q_measured) + " 1/m)");

@@ -4,7 +4,9 @@
 // self-affine law (roads/psd_fit) up to the cut-off q1.
 //
 // Convention: h0^2 = int d^2q C(q) (design.md), C in m^4, q in 1/m.
-// Between measured nodes C is interpolated linearly in log q - log C. Above the last measured
+// Measured nodes: the radial PSD's bins averaged over cells of 1/kLogBinsPerDecade decade
+// (weighted by their coefficient counts), so that the high-q bins' scatter does not enter as
+// kinks. Between measured nodes C is interpolated linearly in log q - log C. Above the last measured
 // node q_m, C(q) = C_fit(q_m) (q/q_m)^-beta with the fitted exponent beta = 2(H+1) and the fitted
 // law's value at q_m (the last bin alone is the noisiest), times `extension_scale` (a wet
 // surface's flat water adds no short-wavelength roughness: its extension is the dry one times
@@ -19,9 +21,13 @@
 
 namespace wr {
 
-// Default cut-off: one decade beyond the measured band (q1 = 10 q_m). Measured road maps resolve
-// ~0.1 mm; the rubber feels roughness down to ~10 um (Persson's road spectra run to 1e5-1e6 1/m).
-constexpr double kDefaultQ1Decades = 1.0;
+// Default cut-off: q1 = 2 pi / 20 um (3.1e5 1/m), or the map's last resolved wavenumber when it
+// resolves finer. Measured road maps resolve ~0.1 mm; the rubber feels shorter wavelengths, down
+// to the scale where the road's micro-texture is worn and contaminated and the tread's filler
+// particles (~10-30 um) set the rubber's own smallest scale (Persson's road spectra run to
+// 1e5-1e6 1/m). The user sees how much the extrapolated band carries (mu against q1).
+constexpr double kDefaultQ1 = 2 * 3.14159265358979323846 / 20e-6;  // 1/m
+constexpr double kLogBinsPerDecade = 20;
 
 struct RoughnessSpectrum {
   std::vector<double> q, C;      // measured nodes, ascending, q > 0, C > 0
@@ -39,7 +45,7 @@ struct RoughnessSpectrum {
 };
 
 // From a map's radial PSD: nodes are the bins with count > 0, 0 < q <= nyquist and C > 0.
-// `q1` (1/m): the cut-off; absent = kDefaultQ1Decades beyond the last node. A q1 above the
+// `q1` (1/m): the cut-off; absent = max(kDefaultQ1, the last node). A q1 above the
 // measured band needs a successful fit (InputError naming `source` otherwise); a q1 at or below
 // the second node is refused (InputError naming --q1) as is one that is not finite.
 RoughnessSpectrum spectrum_from_psd(const RadialPsd& psd, double nyquist, const PsdFit& fit,

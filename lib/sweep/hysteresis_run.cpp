@@ -18,11 +18,13 @@ nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::opt
                                          const FrictionScene& s, int threads) {
   FrictionScene scene = s;
   scene.options.threads = threads;
+  scene.speeds = {s.speeds.front(), kIfiLowSpeed};
   const bool has_water = wet && wet->coverage > 0;
   const FrictionRun r = run_friction(ground, has_water ? wet : std::nullopt, scene, "sweep surface");
   const FrictionPoint& dry = r.dry.points.front();
   const FrictionPoint& hom = has_water ? r.wet_homogeneous->points.front() : dry;
   const FrictionPoint& loc = has_water ? r.wet_local->points.front() : dry;
+  const FrictionPoint& low = has_water ? r.wet_local->points.back() : r.dry.points.back();
   return {{"model", "hysteresis"},
           {"speed", dry.v},
           {"mu_peak", loc.mu},
@@ -30,6 +32,8 @@ nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::opt
           {"mu_homogeneous", hom.mu},
           {"mu_local", loc.mu},
           {"sn", 100 * loc.mu},
+          {"mu_low_speed", low.mu},
+          {"low_speed", kIfiLowSpeed},
           {"area_at_peak", loc.area_fraction},
           {"area_normal", loc.area_fraction},
           {"temperature_rise", loc.temperature_rise},

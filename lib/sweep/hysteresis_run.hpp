@@ -5,7 +5,7 @@
 //
 // Record: {model: "hysteresis", speed, mu_peak (the friction at `speed`: on a wet surface the
 // local sealing model's, design choice of docs/friction-model.md), mu_dry, mu_homogeneous,
-// mu_local, area_at_peak and area_normal (A/A0 at q1), temperature_rise, sn, q1, extrapolated,
+// mu_local, mu_low_speed (the same at kIfiLowSpeed, for the report's IFI route), area_at_peak and area_normal (A/A0 at q1), temperature_rise, sn, q1, extrapolated,
 // failed: false, message: "", validity}.
 #include <optional>
 
@@ -15,6 +15,9 @@
 #include "lib/friction/friction_scene.hpp"
 
 namespace wr {
+
+// The low slip speed of the IFI route (ASTM E1960's DFT speed, 20 km/h).
+constexpr double kIfiLowSpeed = 20 / 3.6;  // m/s
 
 // The scene as a sweep spec stores it (compared on --resume): the compound's content, not
 // only its path, so an edited compound file cannot mix into a resumed sweep.

@@ -14,6 +14,7 @@
 #include "lib/sweep/sample_statistics.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/mpd.hpp"
+#include "water/rain_fill.hpp"
 
 namespace wr {
 namespace {
@@ -127,7 +128,15 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
   const double wall_surface = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   if (s.hysteresis) {
-    rec["contact"] = hysteresis_contact_record(m, std::nullopt, *s.hysteresis, threads);
+    // A skid tester wets the road: the surface at its drained limit (every pool full, the rest
+    // run off), with the sealing of the pools; the dry mu stays in the record.
+    FillRequest req;
+    req.limit = true;
+    const FillResult f = fill_water(m, req);
+    HeightMap wet = m;
+    std::copy(f.water.level.begin(), f.water.level.end(), wet.h.begin());
+    rec["coverage"] = f.water.coverage;
+    rec["contact"] = hysteresis_contact_record(m, WetSurface{&wet, f.water.coverage}, *s.hysteresis, threads);
     rec["quartic"] = nullptr;
     rec["status"] = "ok";
     rec["message"] = "";

@@ -51,6 +51,8 @@ nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s);
 int roughness_run_count(const RoughnessSweepSpec& s);
 
 // One run: synthesize the realization at its value, run the contact scene, fit the normal curve.
+// With the hysteresis model: fill the surface to its drained limit (as a skid tester leaves the
+// road) and record the wet mu at the scene's speed (mu_peak: local sealing) beside the dry one.
 // Never throws: an exception becomes a failed record with the key fields and the reason.
 nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads);
 
