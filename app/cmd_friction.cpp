@@ -169,7 +169,8 @@ int run_friction_command(const FrictionCli& c) {
   if (!plot_path.empty()) write_svg_plot(plot_path, curve_plot(r, s));
   if (!plot_q1_path.empty()) {
     PlotSpec p;
-    p.title = "mu at 17.9 m/s against the cut-off q1 (measured to " + std::to_string(static_cast<int>(r.dry_spectrum.q_measured)) + " 1/m)";
+    p.title = "mu at 17.9 m/s against the cut-off q1 (measured to " + std::to_string(static_cast<int>(r.dry_spectrum.q_measured)) +
+              " 1/m; " + (s.options.flash_temperature ? "flash temperature)" : "isothermal)");
     p.xlabel = "q1 (1/m)";
     p.ylabel = "mu";
     p.logx = true;

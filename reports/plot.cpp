@@ -32,8 +32,8 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
   g << "set title " << quoted(spec.title) << " noenhanced\n";
   g << "set xlabel " << quoted(spec.xlabel) << " noenhanced\nset ylabel " << quoted(spec.ylabel) << " noenhanced\n";
   g << "set grid\nset key top left noenhanced opaque box\n";
-  if (spec.logx) g << "set logscale x\n";
-  if (spec.logy) g << "set logscale y\n";
+  if (spec.logx) g << "set logscale x\nset format x '10^{%L}'\n";
+  if (spec.logy) g << "set logscale y\nset format y '10^{%L}'\n";
   // Series without a finite point are left out (gnuplot refuses empty data); a chart with no
   // point at all says so instead of failing.
   std::vector<std::size_t> drawn;

@@ -257,3 +257,29 @@ TEST_F(Robust, FrictionDryAndWetEndToEnd) {
   EXPECT_NEAR(j["sn64"].get<double>(), 100 * j["speeds"][2]["mu"].get<double>(), 1e-6 * j["sn64"].get<double>());
   EXPECT_TRUE(fs::exists(path("f.h5")));
 }
+
+// The sweeps' hysteresis rung: coverage and roughness sweeps in seconds; the contact scene's
+// displacements are refused with it (and required without it).
+TEST_F(Robust, SweepsTakeTheHysteresisModel) {
+  const std::string cov = "sweep-coverage --size 64 --dx 4e-4 --h0 3e-4 --seed 4 --model hysteresis --coverages 0 0.3 0.6 --out ";
+  const CliRun r = run(cov + path("c.h5") + " --json " + path("c.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("c.json")));
+  ASSERT_EQ(j["table"].size(), 3u);
+  double last = 1.0 + 1e-12;
+  for (const auto& row : j["table"]) {
+    const double local = row["mu_ratio"]["mean"], hom = row["mu_ratio_homogeneous"]["mean"];
+    EXPECT_LT(local, last);
+    EXPECT_LE(local, hom + 1e-12);
+    last = local + 1e-12;
+  }
+  EXPECT_EQ(j["runs"][0]["contact"]["model"], "hysteresis");
+  const CliRun g = run("sweep-roughness --dataset A --values 1e-4 3e-4 --realizations 2 --size 64 --model hysteresis --out " +
+                       path("g.h5") + " --json " + path("g.json") + " -q");
+  ASSERT_EQ(g.code, 0) << g.err;
+  const nlohmann::json k = nlohmann::json::parse(slurp(path("g.json")));
+  EXPECT_LT(k["table"][0]["mu_peak"]["mean"].get<double>(), k["table"][1]["mu_peak"]["mean"].get<double>());
+  EXPECT_GT(k["runs"][0]["coverage"].get<double>(), 0.2);  // wetted to the drained limit
+  expect_refused(cov + path("x.h5") + " --uz 1e-3 --ux 1e-3", "--uz: the hysteresis model has no block to displace");
+  expect_refused("sweep-coverage --size 16 --dx 1e-3 --coverages 0 --out " + path("y.h5"), "--uz: required by the contact models");
+}

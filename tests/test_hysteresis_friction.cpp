@@ -14,7 +14,10 @@
 #include "lib/friction/flash_temperature.hpp"
 #include "lib/friction/hysteresis_friction.hpp"
 #include "lib/friction/modulus_table.hpp"
+#include "lib/friction/friction_scene.hpp"
 #include "roads/self_affine_psd.hpp"
+#include "roads/synthesize.hpp"
+#include "water/rain_fill.hpp"
 
 namespace wr {
 namespace {
@@ -172,6 +175,56 @@ TEST(HysteresisFriction, QuadratureConvergesInTheNodeCount) {
   for (double v : {1e-4, 1e-2, 1.0, 17.9}) {
     const double ref = hysteresis_friction(psd, comp, v, fine).mu;
     EXPECT_NEAR(hysteresis_friction(psd, comp, v, normal).mu, ref, 1e-4 * ref) << v;
+  }
+}
+
+// The same on the spectrum of a synthesized map (log-averaged nodes, extension to q1) with the
+// flash temperature: the fixed point and the quadrature together.
+TEST(HysteresisFriction, MapSpectrumWithFlashTemperatureConverges) {
+  SynthParams p;
+  p.nx = p.ny = 128;
+  p.dx = 2e-4;
+  p.seed = 5;
+  const HeightMap map = synthesize(p).map;
+  FrictionScene s;
+  s.compound = broad_compound();
+  s.options.flash_temperature = true;
+  s.speeds = {1e-3, 0.1, 17.9};
+  FrictionScene fine = s;
+  fine.options.points_per_decade = 400;
+  const FrictionRun a = run_friction(map, std::nullopt, s, "map"), b = run_friction(map, std::nullopt, fine, "map");
+  ASSERT_TRUE(a.dry_spectrum.extrapolated());
+  for (std::size_t i = 0; i < s.speeds.size(); ++i)
+    EXPECT_NEAR(a.dry.points[i].mu, b.dry.points[i].mu, 1e-4 * b.dry.points[i].mu) << s.speeds[i];
+}
+
+// Sealing: a "wet" surface without water is the dry one for both models; at the drained limit
+// both lie below the dry curve at every speed, the local model below the homogeneous one.
+TEST(Sealing, NoWaterIsDryAndPoolsLowerFriction) {
+  SynthParams p;
+  p.nx = p.ny = 128;
+  p.dx = 2e-4;
+  p.seed = 6;
+  const HeightMap map = synthesize(p).map;
+  FrictionScene s;
+  s.compound = broad_compound();
+  s.speeds = {1e-4, 1e-2, 1.0, 17.9};
+  const FrictionRun same = run_friction(map, WetSurface{&map, 0.0}, s, "map");
+  for (std::size_t i = 0; i < s.speeds.size(); ++i) {
+    EXPECT_NEAR(same.wet_homogeneous->points[i].mu, same.dry.points[i].mu, 1e-12 * same.dry.points[i].mu);
+    EXPECT_NEAR(same.wet_local->points[i].mu, same.dry.points[i].mu, 1e-12 * same.dry.points[i].mu);
+  }
+  FillRequest req;
+  req.limit = true;
+  const FillResult f = fill_water(map, req);
+  HeightMap wet = map;
+  std::copy(f.water.level.begin(), f.water.level.end(), wet.h.begin());
+  ASSERT_GT(f.water.coverage, 0.3);
+  const FrictionRun r = run_friction(map, WetSurface{&wet, f.water.coverage}, s, "map");
+  for (std::size_t i = 0; i < s.speeds.size(); ++i) {
+    EXPECT_LT(r.wet_homogeneous->points[i].mu, r.dry.points[i].mu) << s.speeds[i];
+    EXPECT_LT(r.wet_local->points[i].mu, r.wet_homogeneous->points[i].mu) << s.speeds[i];
+    EXPECT_GT(r.wet_local->points[i].mu, 0);
   }
 }
 
