@@ -206,7 +206,7 @@ Command add_friction(CLI::App& root) {
       "Example: wetroad friction road.h5 --wet road-wet.h5 --flash-temperature --plot mu.svg");
   s->add_option("surface", c->input, "the dry surface (HDF5 map or text grid)")->required();
   s->add_option("--wet", c->wet, "the wet surface: output of `wetroad fill` (/height, /water_depth)");
-  s->add_option("--compound", c->compound, "compound JSON file (format: docs/file-formats.md)");
+  s->add_option("--compound", c->compound, "compound JSON file (default share/compounds/synthetic-tread.json; format: docs/friction-model.md)");
   s->add_option("--temperature", c->temperature, "road and rubber temperature in deg C")->capture_default_str();
   s->add_option("--pressure", c->pressure, "nominal contact pressure sigma0 in Pa")->capture_default_str();
   c->speeds_opt = s->add_option("--speeds", c->speeds, "sliding speeds in m/s");

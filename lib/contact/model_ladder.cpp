@@ -102,7 +102,11 @@ ModelChoice choose_model(const ContactRequest& r) {
 nlohmann::json validity_json(ContactModel m, const std::vector<ValidityCheck>& checks, const std::string& chosen_by) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& v : checks) list.push_back({{"check", v.name}, {"passed", v.passed}, {"detail", v.detail}});
-  return {{"model", model_name(m)}, {"valid", all_passed(checks)}, {"chosen_by", chosen_by}, {"checks", list}};
+  return {{"model", model_name(m)},
+          {"mechanism", kElastostaticMechanism},
+          {"valid", all_passed(checks)},
+          {"chosen_by", chosen_by},
+          {"checks", list}};
 }
 
 }  // namespace wr

@@ -3,6 +3,11 @@
 // (minutes). Each model declares validity checks for a contact request; `auto` takes the
 // cheapest model whose checks all pass, and every result carries the checks of the model that
 // produced it, so a result outside its model's validity is flagged, never silent.
+//
+// These contact models give the elastostatic friction (a frictionless elastic block interlocked
+// with the asperities). The friction a tyre has, viscoelastic hysteresis, is the ladder's other
+// rung: lib/friction/friction_scene.hpp (`--model hysteresis` in the sweeps), whose records say
+// "mechanism" too, so every number states which mechanism it is.
 #include <string>
 #include <vector>
 
@@ -36,6 +41,10 @@ constexpr double kSpectralSlopeLimit = 0.2;
 // Upper end of the low-pressure regime in which the analytic theories apply (A/A0).
 constexpr double kAnalyticAreaLimit = 0.1;
 
+constexpr const char* kElastostaticMechanism =
+    "elastostatic: the static resistance of a frictionless elastic block interlocked with the asperities (not a tyre's "
+    "friction)";
+
 const char* model_name(ContactModel m);
 // Throws std::invalid_argument for an unknown name ("auto" is not a model).
 ContactModel parse_model(const std::string& name);
@@ -43,7 +52,7 @@ ContactModel parse_model(const std::string& name);
 std::vector<ValidityCheck> validity_checks(ContactModel m, const ContactRequest& r);
 bool all_passed(const std::vector<ValidityCheck>& checks);
 
-// {model, valid, chosen_by ("user", "auto", "sweep"), checks: [{check, passed, detail}]}: the
+// {model, mechanism, valid, chosen_by ("user", "auto", "sweep"), checks: [{check, passed, detail}]}: the
 // record every contact result carries.
 nlohmann::json validity_json(ContactModel m, const std::vector<ValidityCheck>& checks, const std::string& chosen_by);
 
