@@ -178,14 +178,19 @@ TEST(HysteresisFriction, QuadratureConvergesInTheNodeCount) {
   }
 }
 
-// The same on the spectrum of a synthesized map (log-averaged nodes, extension to q1) with the
-// flash temperature: the fixed point and the quadrature together.
-TEST(HysteresisFriction, MapSpectrumWithFlashTemperatureConverges) {
+// A 128^2 self-affine map (25.6 mm, h0 0.3 mm, H 0.7).
+HeightMap small_map(std::uint64_t seed) {
   SynthParams p;
   p.nx = p.ny = 128;
   p.dx = 2e-4;
-  p.seed = 5;
-  const HeightMap map = synthesize(p).map;
+  p.seed = seed;
+  return synthesize(p).map;
+}
+
+// The same on the spectrum of a synthesized map (log-averaged nodes, extension to q1) with the
+// flash temperature: the fixed point and the quadrature together.
+TEST(HysteresisFriction, MapSpectrumWithFlashTemperatureConverges) {
+  const HeightMap map = small_map(5);
   FrictionScene s;
   s.compound = broad_compound();
   s.options.flash_temperature = true;
@@ -201,11 +206,7 @@ TEST(HysteresisFriction, MapSpectrumWithFlashTemperatureConverges) {
 // Sealing: a "wet" surface without water is the dry one for both models; at the drained limit
 // both lie below the dry curve at every speed, the local model below the homogeneous one.
 TEST(Sealing, NoWaterIsDryAndPoolsLowerFriction) {
-  SynthParams p;
-  p.nx = p.ny = 128;
-  p.dx = 2e-4;
-  p.seed = 6;
-  const HeightMap map = synthesize(p).map;
+  const HeightMap map = small_map(6);
   FrictionScene s;
   s.compound = broad_compound();
   s.speeds = {1e-4, 1e-2, 1.0, 17.9};

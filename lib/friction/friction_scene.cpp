@@ -2,21 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "lib/core/errors.hpp"
+#include "lib/core/number_text.hpp"
 #include "roads/psd_fit.hpp"
 #include "roads/spectrum.hpp"
 
 namespace wr {
 namespace {
 
-std::string text(double x, int digits = 3) {
-  std::ostringstream s;
-  s.precision(digits);
-  s << x;
-  return s.str();
-}
 
 // The curve at the scene's speeds plus the locked-wheel point, its peak and skid number.
 FrictionCurve curve(const std::string& surface, const RoughnessSpectrum& psd, const FrictionScene& s,
@@ -56,14 +50,14 @@ std::vector<ValidityCheck> scene_checks(const FrictionRun& r, const FrictionScen
   std::vector<ValidityCheck> checks;
   const double ratio = s.options.pressure / s.compound.e_relaxed;
   checks.push_back({"pressure well below the rubbery modulus", ratio <= kMaxPressureToModulus,
-                    "sigma0 / E_r = " + text(ratio) + " (limit " + text(kMaxPressureToModulus) + ")", true});
+                    "sigma0 / E_r = " + number_text(ratio) + " (limit " + number_text(kMaxPressureToModulus) + ")", true});
   const FrictionPoint& lw = r.dry.at_locked_wheel;
   const double share = lw.mu > 0 ? lw.mu_extrapolated / lw.mu : 0;
   checks.push_back({"measured band carries most of the friction", share <= 0.5,
                     r.dry_spectrum.extrapolated()
-                        ? "scales above the measured band (q > " + text(r.dry_spectrum.q_measured) + " 1/m, up to q1 = " +
-                              text(r.dry_spectrum.q_end) + " 1/m) carry " + text(100 * share) + " % of mu at 17.9 m/s"
-                        : "no extrapolation: q1 = " + text(r.dry_spectrum.q_end) + " 1/m lies in the measured band",
+                        ? "scales above the measured band (q > " + number_text(r.dry_spectrum.q_measured) + " 1/m, up to q1 = " +
+                              number_text(r.dry_spectrum.q_end) + " 1/m) carry " + number_text(100 * share) + " % of mu at 17.9 m/s"
+                        : "no extrapolation: q1 = " + number_text(r.dry_spectrum.q_end) + " 1/m lies in the measured band",
                     false});
   checks.push_back({"compound fitted to a measured master curve", !s.compound.synthetic,
                     s.compound.synthetic ? "SYNTHETIC compound \"" + s.compound.name + "\": trends, not a prediction for a real tyre"
@@ -79,7 +73,7 @@ std::string default_compound_path() { return std::string(WETROAD_SHARE_DIR) + "/
 void check_friction_scene(const FrictionScene& s) {
   if (s.speeds.empty()) throw InputError("--speeds", "give at least one sliding speed");
   for (double v : s.speeds)
-    if (!(v > 0 && std::isfinite(v))) throw InputError("--speeds", "a sliding speed must be positive (m/s), got " + text(v));
+    if (!(v > 0 && std::isfinite(v))) throw InputError("--speeds", "a sliding speed must be positive (m/s), got " + number_text(v));
   check_friction_options(s.options, s.compound);
   if (s.q1 && !(*s.q1 > 0 && std::isfinite(*s.q1))) throw InputError("--q1", "must be a positive wavenumber in 1/m");
 }

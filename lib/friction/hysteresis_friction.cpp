@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <optional>
 #include <cmath>
-#include <sstream>
 
 #include "lib/core/errors.hpp"
+#include "lib/core/number_text.hpp"
 #include "lib/core/parallel.hpp"
 #include "lib/friction/flash_temperature.hpp"
 
@@ -63,12 +63,6 @@ void cumulative(const LogGrid& g, const std::vector<double>& f, std::vector<doub
 
 constexpr int kMaxFlashPasses = 400;
 
-std::string text(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
-}
 
 }  // namespace
 
@@ -110,7 +104,7 @@ AngleIntegrals angle_integrals(const Compound& c, double omega, double shift) {
 
 void check_friction_options(const FrictionOptions& opt, const Compound& compound) {
   if (!(opt.pressure > 0 && std::isfinite(opt.pressure)))
-    throw InputError("--pressure", "the nominal pressure must be a positive number of Pa, got " + text(opt.pressure));
+    throw InputError("--pressure", "the nominal pressure must be a positive number of Pa, got " + number_text(opt.pressure));
   if (opt.points_per_decade < 4 || opt.points_per_decade > 10000)
     throw InputError("--points-per-decade", "must lie in 4 ... 10000");
   if (!std::isfinite(opt.temperature)) throw InputError("--temperature", "must be a finite temperature in deg C");
@@ -119,7 +113,7 @@ void check_friction_options(const FrictionOptions& opt, const Compound& compound
 
 FrictionPoint hysteresis_friction(const RoughnessSpectrum& psd, const Compound& compound, double v,
                                   const FrictionOptions& opt) {
-  if (!(v > 0 && std::isfinite(v))) throw InputError("--speeds", "a sliding speed must be positive, got " + text(v));
+  if (!(v > 0 && std::isfinite(v))) throw InputError("--speeds", "a sliding speed must be positive, got " + number_text(v));
   const LogGrid g = make_grid(psd, opt.points_per_decade);
   const std::size_t n = g.q.size();
   const double e0 = (1 - compound.poisson * compound.poisson) * opt.pressure;
@@ -156,8 +150,8 @@ FrictionPoint hysteresis_friction(const RoughnessSpectrum& psd, const Compound& 
     }
     if (change < 1e-3) break;
     if (pass >= kMaxFlashPasses)
-      throw NumericalError("--flash-temperature", "the flash temperature did not settle at v = " + text(v) +
-                                                      " m/s (last change " + text(change) + " K)");
+      throw NumericalError("--flash-temperature", "the flash temperature did not settle at v = " + number_text(v) +
+                                                      " m/s (last change " + number_text(change) + " K)");
   }
   FrictionPoint out;
   out.v = v;
@@ -166,7 +160,7 @@ FrictionPoint hysteresis_friction(const RoughnessSpectrum& psd, const Compound& 
   out.temperature_rise = temp.back() - opt.temperature;
   out.mu_extrapolated = F.back() - F[g.measured_end];
   if (!std::isfinite(out.mu) || !std::isfinite(out.area_fraction))
-    throw NumericalError("", "non-finite friction at v = " + text(v) + " m/s");
+    throw NumericalError("", "non-finite friction at v = " + number_text(v) + " m/s");
   return out;
 }
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "lib/core/errors.hpp"
+#include "lib/core/number_text.hpp"
 
 namespace wr {
 namespace {
@@ -44,12 +44,6 @@ Nodes measured_nodes(const RadialPsd& psd, double nyquist) {
   return n;
 }
 
-std::string number_text(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
-}
 
 }  // namespace
 
