@@ -1,5 +1,5 @@
 // `wetroad contact`: normal load and shear test of an elastic block on a (wet) road surface
-// (lib/fem/contact_test.hpp). Runs under mpirun; rank 0 prints and writes.
+// (lib/fem/block_press_shear.hpp). Runs under mpirun; rank 0 prints and writes.
 #include <mpi.h>
 
 #include <cmath>
@@ -15,16 +15,16 @@
 #include "app/print_summary.hpp"
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
-#include "lib/contact/contact_scene.hpp"
+#include "lib/scene/contact_scene.hpp"
 #include "lib/contact/friction_convergence.hpp"
 #include "lib/contact/model_ladder.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
-#include "lib/fem/contact_test.hpp"
+#include "lib/fem/block_press_shear.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/core/fft.hpp"
-#include "lib/spectral/spectral_contact_test.hpp"
+#include "lib/spectral/spectral_press_shear.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/io/hdf5_file.hpp"
 #include "lib/io/output_set.hpp"

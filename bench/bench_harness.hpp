@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lib/core/height_map.hpp"
-#include "lib/contact/contact_scene.hpp"
+#include "lib/scene/contact_scene.hpp"
 
 namespace wr::bench {
 

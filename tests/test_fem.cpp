@@ -10,7 +10,7 @@
 
 #include "lib/analytic/hertz.hpp"
 #include "lib/core/errors.hpp"
-#include "lib/fem/contact_test.hpp"
+#include "lib/fem/block_press_shear.hpp"
 #include "lib/fem/elastic_block.hpp"
 #include "lib/fem/amg_hierarchy.hpp"
 #include "lib/fem/framed_stiffness.hpp"
@@ -19,7 +19,7 @@
 #include "lib/contact/friction_convergence.hpp"
 #include "lib/fem/penetration_retries.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
-#include "lib/contact/contact_scene.hpp"
+#include "lib/scene/contact_scene.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/synthesize.hpp"
 
@@ -716,7 +716,7 @@ TEST(Fem, FrictionlessShearOnAGentleObstacleAgreesWithTheSpectralLayer) {
   ASSERT_GT(slope, 0.05);
   ASSERT_LT(slope, 0.2);
 
-  // One scene, run by both models (lib/contact/contact_scene.hpp).
+  // One scene, run by both models (lib/scene/contact_scene.hpp).
   ContactScene scene;
   scene.uz = 4e-5;
   scene.normal_steps = 2;

@@ -8,7 +8,7 @@
 
 #include "lib/analytic/hertz.hpp"
 #include "lib/spectral/normal_contact.hpp"
-#include "lib/spectral/spectral_contact_test.hpp"
+#include "lib/spectral/spectral_press_shear.hpp"
 #include "roads/synthesize.hpp"
 #include "lib/spectral/surface_compliance.hpp"
 #include "lib/spectral/traction_response.hpp"

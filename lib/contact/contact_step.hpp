@@ -1,6 +1,6 @@
 #pragma once
 // One load step of a contact experiment (Problem A or B, thesis sec. 4.2.2), whichever model
-// computed it (FEM: lib/fem/contact_test.hpp; spectral: lib/spectral/spectral_contact_test.hpp).
+// computed it (FEM: lib/fem/block_press_shear.hpp; spectral: lib/spectral/spectral_press_shear.hpp).
 // SI units: m, N, m^2; forces for the stated E.
 #include <limits>
 #include <string>

@@ -31,7 +31,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lib/contact/contact_scene.hpp"
+#include "lib/scene/contact_scene.hpp"
 #include "lib/friction/friction_scene.hpp"
 #include "roads/synthesize.hpp"
 #include "water/rain_fill.hpp"

@@ -23,7 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lib/contact/contact_scene.hpp"
+#include "lib/scene/contact_scene.hpp"
 #include "lib/friction/friction_scene.hpp"
 #include "roads/synthesize.hpp"
 

@@ -1,4 +1,4 @@
-#include "lib/fem/contact_test.hpp"
+#include "lib/fem/block_press_shear.hpp"
 
 #include <mpi.h>
 #include <petscsys.h>

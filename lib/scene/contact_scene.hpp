@@ -16,8 +16,8 @@
 #include "lib/contact/model_ladder.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/core/height_map.hpp"
-#include "lib/fem/contact_test.hpp"
-#include "lib/spectral/spectral_contact_test.hpp"
+#include "lib/fem/block_press_shear.hpp"
+#include "lib/spectral/spectral_press_shear.hpp"
 
 namespace wr {
 

@@ -1,4 +1,4 @@
-#include "lib/contact/contact_scene.hpp"
+#include "lib/scene/contact_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/memory_guard.hpp"
-#include "lib/fem/contact_test.hpp"
-#include "lib/spectral/spectral_contact_test.hpp"
+#include "lib/fem/block_press_shear.hpp"
+#include "lib/spectral/spectral_press_shear.hpp"
 #include "roads/height_stats.hpp"
 
 namespace wr {

@@ -1,5 +1,5 @@
 #include "lib/core/provenance.hpp"
-#include "lib/spectral/spectral_contact_test.hpp"
+#include "lib/spectral/spectral_press_shear.hpp"
 
 #include <chrono>
 #include <cmath>
