@@ -1,0 +1,182 @@
+#include "lib/fem/elastic_block_impl.hpp"
+
+namespace wr {
+
+using petsc::check;
+
+std::array<double, 9> block_detail::frame_of(const Vec3& n) {
+  std::array<double, 9> q{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const Vec3 w{-n.x, -n.y, 1 - n.z};  // e_z - n
+  const double ww = w.dot(w);
+  if (ww < 1e-30) return q;
+  const double wv[3] = {w.x, w.y, w.z};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) q[r * 3 + c] -= 2 * wv[r] * wv[c] / ww;
+  return q;
+}
+
+// ---- One solve(): Algorithm 1 of the thesis (sec. 4.2), one phase per function ----
+
+std::vector<FaceNode> ElasticBlock::Impl::owned_face_nodes() const {
+  const GradedMesh& g = *mesh;
+  std::vector<FaceNode> face;
+  for (int j = 0; j <= face_ny(); ++j)
+    for (int i = g.owned_i_begin(rank, 0); i < g.owned_i_end(rank, 0); ++i) {
+      const std::int32_t id = g.node(0, i, j);
+      face.push_back(FaceNode{i, j, {dof(id, 0), dof(id, 1), dof(id, 2)}, g.position(0, i, j)});
+    }
+  return face;
+}
+
+ElasticBlock::Impl::TopBoundary ElasticBlock::Impl::prescribe_top(const ContactLoad& load) {
+  const GradedMesh& g = *mesh;
+  TopBoundary t;
+  const int top = g.layers(), top_level = g.planes()[top].level;
+  for (int j = 0; j <= g.cells_y(top_level); ++j)
+    for (int i = g.owned_i_begin(rank, top_level); i < g.owned_i_end(rank, top_level); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const PetscInt row = dof(g.node(top, i, j), c);
+        t.top_rows[c].push_back(row);
+        if (load.top == TopCondition::frictionless && c < 2) continue;
+        t.fixed_rows.push_back(row);
+        t.fixed_vals.push_back(c == 0 ? load.ux : (c == 1 ? 0.0 : -load.uz));
+      }
+  if (load.top == TopCondition::frictionless) {
+    // In-plane rigid motion is free: pin two face corners.
+    const std::int32_t c0 = g.node(0, 0, 0), c1 = g.node(0, face_nx(), 0);
+    if (owns(c0)) {
+      t.fixed_rows.insert(t.fixed_rows.end(), {dof(c0, 0), dof(c0, 1)});
+      t.fixed_vals.insert(t.fixed_vals.end(), {0.0, 0.0});
+    }
+    if (owns(c1)) {
+      t.fixed_rows.push_back(dof(c1, 1));
+      t.fixed_vals.push_back(0.0);
+    }
+  }
+  check(VecSetValues(u, PetscInt(t.fixed_rows.size()), t.fixed_rows.data(), t.fixed_vals.data(), INSERT_VALUES),
+        "VecSetValues");
+  check(VecAssemblyBegin(u), "VecAssemblyBegin");
+  check(VecAssemblyEnd(u), "VecAssemblyEnd");
+  return t;
+}
+
+ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg)
+    : q_all(9 * face_nodes), q_mine(q_all.size()) {
+  for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) check(VecDuplicate(like, v), "VecDuplicate");
+  check(KSPCreate(comm, &ksp), "KSPCreate");
+  check(KSPSetType(ksp, KSPCG), "KSPSetType");
+  PC pc;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCGAMG), "PCSetType");
+  check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  // Chebyshev smoothers with eigenvalue bounds estimated by the smoothed-aggregation step came
+  // out too low on rough-surface systems (KSP_DIVERGED_INDEFINITE_PC at tight tolerances):
+  // estimate them per level, with a wider safety margin. Options given by the user win.
+  set_default_option("-pc_gamg_use_sa_esteig", "0");
+  set_default_option("-mg_levels_ksp_chebyshev_esteig", "0,0.1,0,1.2");
+  // One smoothing step per level instead of PETSc's two: a V-cycle costs about half (the fine
+  // level's matrix products dominate) for a few more CG iterations at most. 100 x 100 scene,
+  // refine 2, tol 1e-3: 38 Signorini / 1227 CG iterations / 146 s in the solves against
+  // 39 / 1409 / 305 s.
+  set_default_option("-mg_levels_ksp_max_it", "1");
+  if (amg == AmgHierarchy::lean) {
+    // Unsmoothed aggregation: the prolongator keeps 6 entries per row and the coarse operators
+    // stay sparse; set through the PC so that -pc_gamg_agg_nsmooths still overrides it.
+    check(PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths");
+    int ranks = 1;
+    MPI_Comm_size(comm, &ranks);
+    // All at once exists for parallel (MPIAIJ) products only; PETSc 3.18 refuses it on one rank.
+    if (ranks > 1) ptap_option = std::make_unique<ScopedDefaultOption>("-matptap_via", "allatonce");
+  }
+  check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+}
+
+ElasticBlock::Impl::LinearSystems::~LinearSystems() {
+  KSPDestroy(&ksp);
+  for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) VecDestroy(v);
+}
+
+void ElasticBlock::Impl::linearise(std::vector<FaceNode>& face, const ContactLoad& load) const {
+  constexpr double kMinRayCosine = 0.5;  // of a ray with the downward vertical
+  const GradedMesh& g = *mesh;
+  const int fnx = face_nx(), fny = face_ny();
+  const double reach = std::max(spec.mesh.lz, 1e-12);  // rays look this far for the obstacle
+  gather_face();
+  const PetscScalar* fu;
+  check(VecGetArrayRead(face_u, &fu), "VecGetArrayRead");
+  auto X = [&](int i, int j) {
+    const std::size_t k = 3 * (std::size_t(j) * (fnx + 1) + i);
+    return g.position(0, i, j) + Vec3{fu[k], fu[k + 1], fu[k + 2]};
+  };
+  for (FaceNode& f : face) {
+    if (!load.obstacle) {
+      f.normal = {0, 0, 1};
+      f.g = 0.0;
+      continue;
+    }
+    if (!load.follow_geometry) {
+      f.normal = {0, 0, 1};
+      f.g = load.obstacle->height(f.x0.x, f.x0.y);
+      continue;
+    }
+    const Vec3 here = X(f.i, f.j);
+    // Outward normal of the deformed face (pointing down), from the neighbours' positions.
+    const Vec3 t1 = X(std::min(f.i + 1, fnx), f.j) - X(std::max(f.i - 1, 0), f.j);
+    const Vec3 t2 = X(f.i, std::min(f.j + 1, fny)) - X(f.i, std::max(f.j - 1, 0));
+    Vec3 n = t2.cross(t1).unit();
+    // Which side of the obstacle a node is on decides which crossing is its gap
+    // (PeriodicObstacle::cast), so the ray must point down. On steep obstacles the face's
+    // edge nodes, pressed into flanks, can fold their elements over (on a 100 x 100 patch of
+    // slope 1.8 at 30 % compression: face normals up to 80 degrees from vertical, some
+    // pointing up); there the vertical stands in.
+    if (n.z > -kMinRayCosine) n = {0, 0, -1};
+    // A node inside the obstacle is held to the tangent plane where its ray's line comes out.
+    // Along a tilted ray that plane can leave the node inside it (the ray glancing a flank
+    // whose normal is more than 90 degrees from -n): a fixed point of Algorithm 1 with the
+    // node still in. Along the vertical the plane always cuts the node off, and the step
+    // it asks for, (h - z) n_z, is the penetration face_gaps measures.
+    if (here.z < load.obstacle->height(here.x, here.y)) n = {0, 0, -1};
+    const auto hit = load.obstacle->cast(here, n, reach);
+    if (!hit) {
+      f.normal = {0, 0, 1};
+      f.g = -INFINITY;
+      continue;
+    }
+    if (load.block_normals > 0) {
+      // The virtual plane of sec. 4.2.1: through the hit, orthogonal to the block's normal
+      // (flipped to point out of the obstacle, as N does). Relaxed from the last one used;
+      // a node's first linearisation of the step (no bound yet) takes n_k itself.
+      const Vec3 nk = n * -1.0;
+      f.normal = std::isfinite(f.g) ? (f.normal + (nk - f.normal) * load.block_normals).unit() : nk;
+    } else {
+      f.normal = !load.facet_normals      ? hit->normal
+                 : load.facet_band > 0 ? load.obstacle->banded_facet_normal(hit->point, load.facet_band)
+                                       : load.obstacle->normal(hit->point.x, hit->point.y);
+    }
+    f.g = f.normal.dot(hit->point - f.x0);  // N . (x0 + u) >= N . q, N the constraint normal
+  }
+  VecRestoreArrayRead(face_u, &fu);
+}
+
+double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s) const {
+  const int fnx = face_nx();
+  std::fill(s.q_mine.begin(), s.q_mine.end(), 0.0);
+  for (const FaceNode& f : face) {
+    const auto q = frame_of(f.normal);
+    std::copy(q.begin(), q.end(), s.q_mine.begin() + 9 * (std::size_t(f.j) * (fnx + 1) + std::size_t(f.i)));
+  }
+  MPI_Allreduce(s.q_mine.data(), s.q_all.data(), int(s.q_all.size()), MPI_DOUBLE, MPI_SUM, comm);
+  stiffness->set_frames(s.q_all);
+  check(MatGetDiagonal(stiffness->mat(), s.diag), "MatGetDiagonal");
+  check(VecCopy(u, s.uh), "VecCopy");
+  stiffness->rotate_vector(s.uh, s.q_all, true);
+  // Eliminated rows get a diagonal of the matrix's own scale, so that AMG smoothers see no
+  // stray unit entries among stiffnesses of order E h.
+  PetscScalar diag_sum;
+  PetscInt diag_n;
+  VecSum(s.diag, &diag_sum);
+  VecGetSize(s.diag, &diag_n);
+  return diag_sum / double(diag_n);
+}
+
+}  // namespace wr
