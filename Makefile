@@ -57,7 +57,7 @@ fuzz-libhdf5: fuzz
 	@scripts/run-fuzz.sh $(FUZZ_DIR)/bin/fuzz_hdf5_container tests/fuzz/seeds/fuzz_hdf5_container \
 	  $(FUZZ_DIR)/corpus/fuzz_hdf5_container $(FUZZ_SECONDS)
 
-# Benchmarks and long validations: run by hand, results go into issue notes.
+# Benchmarks and long validations: run by hand, results go into docs/performance.md and docs/validation.md.
 bench: build
 	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3
 	$(BUILD_DIR)/bin/wetroad bench speed --sizes 300 4096 --repeat 3 --files

@@ -543,7 +543,7 @@ Command add_contact(CLI::App& root) {
                 "experimental: constrain each node along the block's own deformed face normal (the thesis's "
                 "reading of sec. 4.2.1) instead of the obstacle's, the normal relaxed by this factor per Signorini "
                 "iteration (0 ... 1; 0: off). Not a physical model of a rigid frictionless obstacle: for comparison "
-                "with the thesis only (README, issue 4)")
+                "with the thesis only (docs/validation.md)")
       ->check(CLI::Range(0.0, 1.0))
       ->excludes("--facet-normals");
   s->add_flag("--trace", c->opt.trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time)");

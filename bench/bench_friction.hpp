@@ -1,5 +1,5 @@
 #pragma once
-// `wetroad bench friction`: speed and accuracy of the hysteresis model (issue 44, bar 5).
+// `wetroad bench friction`: speed and accuracy of the hysteresis model.
 // On an N x N default-like surface (the default scene's 30 mm tile, h0 0.3 mm, H 0.7, q0 = 5 qL,
 // dx = 30 mm / N, spectrum to the grid's Nyquist wavenumber): the time of the
 // spectrum (FFT, radial PSD, fit), of mu at S speeds isothermal and with the flash temperature

@@ -58,7 +58,7 @@ nlohmann::json spectral_shear(std::size_t n, double uz, double ux, int steps, in
 nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t band_n, int seeds, int threads,
                               bool period_effect);
 
-// Spectral against FEM on small and growing slopes (issue 5, bar 3): for each h0, a 100 x 100
+// Spectral against FEM on small and growing slopes: for each h0, a 100 x 100
 // self-affine scene (H 0.7, q0 = 2 qL, period 1 cm) pressed by the FEM block (uz proportional
 // to h0, about a third of contact) at face refinement `refine` and then sheared (top moved by
 // uz / 2 in two steps); the spectral layer (thickness = the period) pressed to the FEM's mean
@@ -68,7 +68,7 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
 // PETSc must be initialised; the spectral runs and progress lines on `rank` 0.
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank);
 
-// Speed against accuracy on one scene (issue 5, bar 5): the spectral_vs_fem scene at h0, the
+// Speed against accuracy on one scene: the spectral_vs_fem scene at h0, the
 // FEM at each refine (the finest one's mean pressure is the other models' load), the spectral
 // layer at each refine, the analytic model; A/A0 and wall time per point, and the error of
 // A/A0 against the finest FEM. PETSc must be initialised; spectral and analytic on `rank` 0.
@@ -76,7 +76,7 @@ nlohmann::json accuracy(double h0, const std::vector<int>& fem_refines, const st
                         int rank);
 void plot_accuracy(const nlohmann::json& result, const std::string& path);
 
-// Mesh convergence of the FEM shear test (issue 4, bar 3): `base` (a shear test; its model and
+// Mesh convergence of the FEM shear test: `base` (a shear test; its model and
 // refine are set here) run by the FEM on
 // `surface` at each face refinement in `refines` (ascending; spacing = obstacle spacing /
 // refine). A mesh whose estimated memory (fem_memory_estimate with the hierarchy the block
@@ -89,7 +89,7 @@ nlohmann::json fem_mesh_convergence(const HeightMap& surface, const ContactScene
                                     int rank);
 void plot_mesh_convergence(const nlohmann::json& result, const std::string& path);
 
-// The compliance of small contact spots (issue 4, bar 2: where the bricks' face error comes
+// The compliance of small contact spots (where the bricks' face error comes
 // from): a flat 64 x 64 obstacle (0.1 mm spacing) with a k x k square of vertices raised by
 // 10 um, touched by the FEM block (cube, E = 1, nu = 0.45, `layers` brick layers per level) and
 // by the spectral layer (as thick as the cube) on the same face lattice, the top moved 0.1 um

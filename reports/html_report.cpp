@@ -449,8 +449,8 @@ void write_html_report(const std::string& path, const ReportInput& in) {
         << figure(files[0], "Static friction on the wet surface relative to the dry surface (thesis Figure 5.25).")
         << figure(files[1], "Contact area fraction after the normal load and at the friction peak.")
         << coverage_table_html(file, sweep)
-        << figure(files[3], "Mean depth of the water pools.")
-        << figure(files[2], "Radial PSD of the wet surfaces: pools flatten the texture (thesis Figure 5.26).");
+        << figure(files[2], "Mean depth of the water pools.")
+        << figure(files[3], "Radial PSD of the wet surfaces: pools flatten the texture (thesis Figure 5.26).");
     }
     if (!in.sweeps.empty()) o << skid_section(in, charts);
     o << "</body></html>\n";

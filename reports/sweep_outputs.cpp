@@ -199,8 +199,14 @@ std::vector<std::string> write_coverage_plots(const std::string& dir, const nloh
   files.push_back(dir + "/pool_depth.svg");
   write_svg_plot(files.back(), pool);
 
-  // Wet PSDs of the first realization (Figure 5.26).
+  // Wet PSDs of the first realization (Figure 5.26). Values 12 decades below the largest are
+  // round-off beyond the synthesized band (1e-45 and less), which would squash every curve into
+  // the top of a log chart: they are left out.
   PlotSpec psd{"PSD of the wet surfaces (realization 0)", "q [1/m]", "C(q) [m^4]", true, true, {}};
+  double c_max = 0;
+  for (const auto& r : sweep["runs"])
+    if (r["realization"].get<int>() == 0 && r.contains("psd"))
+      for (const auto& c : r["psd"]["C"]) c_max = std::max(c_max, num(c));
   for (const auto& r : sweep["runs"]) {
     if (r["realization"].get<int>() != 0 || !r.contains("psd")) continue;
     PlotSeries s;
@@ -211,7 +217,7 @@ std::vector<std::string> write_coverage_plots(const std::string& dir, const nloh
     const auto q = r["psd"]["q"].get<std::vector<double>>();
     const auto c = r["psd"]["C"].get<std::vector<double>>();
     for (std::size_t k = 0; k < q.size(); ++k)
-      if (q[k] > 0 && c[k] > 0) {
+      if (q[k] > 0 && c[k] > 1e-12 * c_max) {
         s.x.push_back(q[k]);
         s.y.push_back(c[k]);
       }

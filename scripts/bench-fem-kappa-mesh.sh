@@ -1,5 +1,5 @@
 #!/bin/sh
-# Where the FEM's low-pressure kappa error sits (issue 4, bars 2-3): face refinement against the
+# Where the FEM's low-pressure kappa error sits: face refinement against the
 # bulk's grading (--layers), on a gentle 100 x 100 patch of dataset A's spectrum (dx 0.1 mm,
 # h0 15 um, rms slope 0.09), pressed 40 um in 2 steps (A/A0 ~2 % and ~5 %), 2 ranks.
 # The reference is the spectral model on the same triangulated obstacle at the same face

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The FEM's low-pressure kappa against h0 on dataset A (issue 4, bar 2; thesis sec. 5.2.3,
+# The FEM's low-pressure kappa against h0 on dataset A (thesis sec. 5.2.3,
 # Table C.1): 300 x 300 surfaces (dx 0.1 mm, H 0.7, q0 = 5 qL, seed 1), cube M (3 cm), nu 0.45,
 # face spacing dx / 2 (refine 2), 2 ranks. Each h0 is pressed in 2 steps to uz = 7.2 h0, which
 # puts A/A0 near 2 % and 8 %, inside the thesis's 15 % low-pressure range: in the small-slope

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Peak memory of the FEM at the thesis's scale (issue 4, bar 4: the delta_theta / 4 mesh in
+# Peak memory of the FEM at the thesis's scale (the delta_theta / 4 mesh in
 # 24 GiB): the dataset-A surface of bench-fem-thesis.sh (300 x 300, dx 0.1 mm, h0 0.305 mm),
 # pressed 4.5 mm for a few Signorini iterations (the step is stopped there on purpose: the
 # peak is reached in the first AMG setup and solve), on 2 ranks, with the AMG hierarchy given.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# FEM speedup on 2 MPI ranks against 1 (issue 4, bar 5): the same contact run on each, timed by
+# FEM speedup on 2 MPI ranks against 1: the same contact run on each, timed by
 # its own --json (wall_s: mesh, assembly and solve) and by /usr/bin/time (the whole process,
 # with peak memory per rank). The two runs take slightly different paths (GAMG's aggregates
 # follow the partition), so the Signorini and CG counts are printed with the times, and the

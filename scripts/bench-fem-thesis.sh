@@ -1,5 +1,5 @@
 #!/bin/sh
-# The FEM at the thesis's scale (issue 4, bar 4): a dataset-A surface (300 x 300, dx 0.1 mm,
+# The FEM at the thesis's scale: a dataset-A surface (300 x 300, dx 0.1 mm,
 # H 0.7, q0 = 5 qL, h0 0.305 mm), cube M (3 cm), nu 0.45, face spacing dx / 2 (refine 2).
 # Problem A (uz 9 mm in 2 steps) then Problem B (ux in shear steps) on 2 ranks; wall time and
 # peak memory per rank from /usr/bin/time, per-step times and forces from --json.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Sweep throughput on 1 and 2 MPI ranks (issue 6, bar 4): the same 8-coverage FEM sweep on the
+# Sweep throughput on 1 and 2 MPI ranks: the same 8-coverage FEM sweep on the
 # default surface sampled 32 x 32, timed end to end; the CSV tables must be identical.
 # Usage: scripts/bench-sweep-mpi.sh [WETROAD] [WORKDIR]
 set -eu

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 4, bar 5 (agreement): the shear test on 2 MPI ranks gives the same mu and A/A0 as on
+# agreement: the shear test on 2 MPI ranks gives the same mu and A/A0 as on
 # 1 rank, relative 1e-6, at every step. The ranks' GAMG hierarchies differ (aggregates follow the
 # partition), so the two runs take different paths and agree only to the solver's tolerance:
 # hence the tight --tol and --ksp-rtol (at the default --tol 1e-3 mu differs by ~1e-4). The

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 6, bar 5: the report of a sweep opens offline and shows every plot. Structural check: one
+# the report of a sweep opens offline and shows every plot. Structural check: one
 # HTML document, no external resource, five inline SVG charts, each well-formed XML (xmllint).
 # Rendered check: every chart is rasterised by librsvg (rsvg-convert) into a non-trivial PNG.
 # Usage: report_renders.sh WETROAD WORKDIR

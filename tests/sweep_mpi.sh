@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 6, bar 4 (identity): a coverage sweep on 2 MPI ranks gives results identical to 1 process
+# identity: a coverage sweep on 2 MPI ranks gives results identical to 1 process
 # (the CSV table, 17 digits, byte for byte). The throughput is measured by hand (README).
 # Usage: sweep_mpi.sh WETROAD MPIEXEC WORKDIR
 # shellcheck source=tests/mpi-test-env.sh

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 6, bar 3: a coverage sweep killed with SIGKILL after at least two finished runs resumes
+# a coverage sweep killed with SIGKILL after at least two finished runs resumes
 # (--resume), redoes at most the run in progress, and ends with results identical to an
 # uninterrupted sweep (the CSV table, written to 17 digits, compared byte for byte).
 # Usage: sweep_resume.sh WETROAD WORKDIR

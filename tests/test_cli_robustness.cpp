@@ -200,7 +200,7 @@ TEST_F(Robust, SceneFilesFoundByTheFuzzerAreRefusedCleanly) {
 
 }  // namespace
 
-// Issue 44, bar 6: every bad input of `wetroad friction` is one line naming the file or option,
+// every bad input of `wetroad friction` is one line naming the file or option,
 // exit 2, and no output.
 TEST_F(Robust, FrictionRefusesBadInputByName) {
   const std::string out = " --json " + path("f.json") + " --out " + path("f.h5") + " --plot " + path("f.svg");
@@ -232,7 +232,7 @@ TEST_F(Robust, FrictionRefusesBadInputByName) {
 }
 
 // The command end to end on a synthesized surface and its wet version: the JSON carries the
-// issue's keys, the wet curves lie below the dry one, the flash temperature lowers mu at speed.
+// documented keys, the wet curves lie below the dry one, the flash temperature lowers mu at speed.
 TEST_F(Robust, FrictionDryAndWetEndToEnd) {
   ASSERT_EQ(run("synth --size 64 --dx 1e-4 --h0 3e-4 --seed 2 -q -o " + path("s.h5")).code, 0);
   ASSERT_EQ(run("fill " + path("s.h5") + " --limit -q -o " + path("w.h5")).code, 0);

@@ -682,7 +682,7 @@ TEST(Fem, CoarseStartReachesTheSameStateInFewerFineIterations) {
 
 
 // The frictionless shear test on a gentle periodic obstacle (rms slope ~0.1; the small-slope
-// scene of issue 5, bar 3) by the FEM cube and by the spectral layer of the same thickness, at
+// scene of bench spectral-vs-fem) by the FEM cube and by the spectral layer of the same thickness, at
 // the same displacements (press to about a third of contact, then the top moved by one lattice
 // cell). The independent answer is translation invariance: a laterally periodic body's elastic
 // energy does not depend on where its face sits over the obstacle, so Fx = dE/dux = 0. The

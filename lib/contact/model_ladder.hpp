@@ -1,5 +1,5 @@
 #pragma once
-// The model ladder of ../shared/design.md: analytic (microseconds) < spectral (seconds) < FEM
+// The model ladder (README, "which model for which question"): analytic (microseconds) < spectral (seconds) < FEM
 // (minutes). Each model declares validity checks for a contact request; `auto` takes the
 // cheapest model whose checks all pass, and every result carries the checks of the model that
 // produced it, so a result outside its model's validity is flagged, never silent.
@@ -35,7 +35,7 @@ struct ValidityCheck {
   bool decides_model = true;
 };
 
-// Small-slope limit of the spectral model (rms slope). Provisional: the definition of a
+// Small-slope limit of the spectral model (rms slope). Provisional: the requirement's definition of a
 // small-slope scene; the FEM comparison over slopes is to refine it.
 constexpr double kSpectralSlopeLimit = 0.2;
 // Upper end of the low-pressure regime in which the analytic theories apply (A/A0).

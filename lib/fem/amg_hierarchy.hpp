@@ -3,7 +3,7 @@
 // 2 ranks the standard hierarchy (smoothed aggregation, PETSc's scalable PtAP) takes about
 // 8.1-8.4 KiB per node, so the thesis's delta_theta / 4 mesh (300 x 300 at refine 4: 3.93M
 // nodes) would need about 33 GB; the lean one (unsmoothed aggregation, all-at-once PtAP) takes
-// 5.3-5.4 KiB per node and sets up and solves that mesh in 19.5 GiB (issue 4, bar 4). Lean costs more CG
+// 5.3-5.4 KiB per node and sets up and solves that mesh in 19.5 GiB. Lean costs more CG
 // iterations on small scenes (100 x 100, refine 2: 1909 against 1233), so it is used only where
 // the standard one would not fit. On one rank the products stay PETSc's scalable ones (the
 // all-at-once algorithm is for parallel matrices only).

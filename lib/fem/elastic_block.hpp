@@ -12,7 +12,7 @@
 // (Householder, Q e_z = N) turns the constraints into simple bounds; the bound-constrained
 // problem is solved by a primal-dual active set (semismooth Newton) loop on the full rotated
 // matrix, active degrees of freedom eliminated in place, CG preconditioned by GAMG (block
-// size 3), warm-started (../shared/notes/fem-solver-study.md). The correction is damped
+// size 3), warm-started (docs/fem-solver.md). The correction is damped
 // (default 0.8) and the loop stops when the relative change of the bottom-face displacement
 // (l2 over the face nodes: the lumped boundary mass on this uniform face grid) is below a
 // tolerance. Units: SI, forces in N for the given E (Pa).
@@ -57,7 +57,7 @@ struct ContactLoad {
   // the ray's hit), not the obstacle's. Recomputed every Signorini iteration and relaxed: the
   // normal used is N + b (n_k - N), renormalised, b this factor in (0, 1] (1: the thesis's
   // plain update). The force is then along n_k, which a rigid frictionless obstacle cannot
-  // exert; this exists to measure what that formulation gives (README, issue 4).
+  // exert; this exists to measure what that formulation gives (docs/validation.md).
   double block_normals = 0;
   double tolerance = 1e-5;       // relative change of the contact-face displacement
   // m; > 0: a step that meets the tolerance while a face node is deeper in the obstacle goes on

@@ -1,7 +1,7 @@
 #pragma once
 // Frictionless, non-adhesive normal contact of a periodic elastic body (half-space or layer,
 // surface_compliance.hpp) on a rigid periodic obstacle given as a height map: the spectral
-// (FFT boundary-element) rung of the model ladder (../shared/design.md).
+// (FFT boundary-element) rung of the model ladder (README).
 //
 // Unknown: the contact pressure p >= 0 at the grid points (one per obstacle sample). The
 // body's face, flat at z = 0 before loading, is pushed down by the approach d and lifted by
