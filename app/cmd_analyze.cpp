@@ -91,7 +91,7 @@ Command add_analyze(CLI::App& root) {
       "plain-text grid (whitespace/comma separated, rows = y; needs --dx). NaN = dropout.\n"
       "Example: wetroad analyze road.h5 --json road.json --out road-analysis.h5");
   s->add_option("file", c->input, "surface file (HDF5 or text grid)")->required();
-  s->add_option("--json", c->json, "write the summary as JSON (SI units; keys documented in README)");
+  s->add_option("--json", c->json, "write the summary as JSON (SI units; keys in docs/file-formats.md)");
   s->add_option("--out", c->out, "write the summary, the radial PSD (/psd/q, /psd/C) and summit heights to HDF5");
   c->dx_opt = s->add_option("--dx", c->dx, "text grids: sample spacing along x in m (required for text)");
   c->dy_opt = s->add_option("--dy", c->dy, "text grids: spacing along y in m (default: --dx)");

@@ -532,7 +532,7 @@ Command add_bench(CLI::App& root) {
   he->add_option("--json", c->json, "write the results as JSON");
   CLI::App* st = b->add_subcommand("spot", "Compliance of one- to few-node contact spots, FEM bricks against spectral pixels (MPI ok).");
   st->footer(
-      "Where the FEM's face error on rough surfaces comes from (README, contact): a spot of k x k raised obstacle\n"
+      "Where the FEM's face error on rough surfaces comes from (docs/fem-solver.md): a spot of k x k raised obstacle\n"
       "vertices is touched by both models on the same face lattice; the ratio of their local compliances is 1 for\n"
       "a resolved spot and shows what a node of the bricks' face yields against a pixel of uniform pressure.\n"
       "Example: wetroad bench spot --sizes 1 2 4 --refines 1 2 4  (the defaults take about 2 min)");

@@ -480,7 +480,7 @@ Command add_contact(CLI::App& root) {
   s->add_option("--height", c->opt.height, "block height in m (default: the period, a cube)");
   s->add_option("--layers", c->opt.layers_per_level,
                 "brick layers at each in-plane spacing (more: softer, more accurate bulk; 4 converge it, "
-                "1 is too stiff: A/A0 at a given load ~25 % low at refine 1-2, see README)")
+                "1 is too stiff: A/A0 at a given load ~25 % low at refine 1-2, see docs/validation.md)")
       ->capture_default_str();
   s->add_option("--coarsen", c->opt.max_coarsenings, "in-plane spacing doublings allowed away from the face")
       ->capture_default_str();
@@ -508,7 +508,7 @@ Command add_contact(CLI::App& root) {
   s->add_option("--predictor", c->opt.secant_predictor,
                 "fem: which steps that continue the previous one's direction start from the last state extrapolated "
                 "along the last increment (secant predictor): off, press (the normal steps; the default) or all "
-                "(also the shear steps: faster, but it can reach the snap over the asperities earlier; see README); "
+                "(also the shear steps: faster, but it can reach the snap over the asperities earlier; see docs/fem-solver.md); "
                 "off under --coarse-start")
       ->transform(CLI::CheckedTransformer(secant_predictor_names(), CLI::ignore_case))
       ->option_text("off|press|all (default press)");

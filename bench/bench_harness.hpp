@@ -64,7 +64,7 @@ nlohmann::json spectral_kappa(const std::vector<std::size_t>& sizes, std::size_t
 // uz / 2 in two steps); the spectral layer (thickness = the period) pressed to the FEM's mean
 // pressure on the same face lattice, and sheared at the FEM's displacements. A/A0 after the
 // press and mu after the shear of both; the mu difference also relative to the rms slope (the
-// scale of a frictionless mu; both are ~0 on a periodic obstacle, see README "contact models").
+// scale of a frictionless mu; both are ~0 on a periodic obstacle, see docs/validation.md).
 // PETSc must be initialised; the spectral runs and progress lines on `rank` 0.
 nlohmann::json spectral_vs_fem(const std::vector<double>& h0s, int refine, int rank);
 

@@ -26,7 +26,7 @@ struct AnalysisOptions {
   std::vector<double> sigma_stars = {0.01, 0.05, 0.1, 0.2, 0.5};
 };
 
-// Values that exist both measured and prescribed share this block (JSON names of the issue).
+// Values that exist both measured and prescribed share this block (the same JSON names).
 struct SurfaceFigures {
   std::optional<double> h0, rms_slope_spectral, m0, m2, m4, alpha, hurst, q0, plateau,
       summit_density, summit_mean, summit_var, mpd, mpd_std, etd;

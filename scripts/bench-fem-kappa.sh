@@ -17,7 +17,7 @@
 #   limit (the step fails).
 #   REFINE: the face refinement of both models (default 2, the thesis's dGamma = dtheta / 2);
 #   runs at 1 and 2 give a Richardson estimate of the mesh-converged kappa, 2 k(2) - k(1) at
-#   the first order observed on a patch (README, contact).
+#   the first order observed on a patch (docs/validation.md).
 # Long: 15-30 min per h0 on 2 cores, ~9 GB. Not part of make test.
 # $MPIRUN and the case lists split into words on purpose.
 # shellcheck disable=SC2086

@@ -2,10 +2,10 @@
 # The main job on the built-in default scene: synthesize the default asphalt-like surface
 # (share/scenes/default-asphalt.json), analyze it, and fill it with rain water (30% coverage and
 # the drained limit); then a shear test of an elastic block on a small gentle patch (4 mm, 40 x 40:
-# the FEM on the full 300 x 300 default surface is a long job, see README "contact"); finally a
+# the FEM on the full 300 x 300 default surface is a long job, see docs/performance.md); finally a
 # small coverage sweep on the default surface sampled coarsely (32 x 32 over the same 30 mm tile,
 # so that each FEM run takes seconds; contact forces along the obstacle's facet normals, see
-# README "sweeps"), a roughness sweep over the thesis's dataset A on 16 x 16 surfaces (its
+# docs/validation.md), a roughness sweep over the thesis's dataset A on 16 x 16 surfaces (its
 # surfaces' MPDs give the skid-number chart its points), the hysteresis friction mu(v) of tread
 # rubber on the dry and the drained wet surface (flash temperature on), the same model's coverage
 # and roughness sweeps (the skid-number prediction), and the HTML report of all of them.

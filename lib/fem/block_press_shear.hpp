@@ -68,7 +68,7 @@ struct ContactTestOptions {
   // iterations). `all` predicts the shear steps too, which is faster but not neutral: a
   // frictionless shear on a rough obstacle is path dependent (the block snaps over its
   // asperities), and starting ahead on the secant crosses the snap earlier (1 cm stand-in: peak
-  // mu 0.349 at 5.5 mm against 0.450 at 7 mm; README). A coarse start (coarse_refine) chooses
+  // mu 0.349 at 5.5 mm against 0.450 at 7 mm; docs/fem-solver.md). A coarse start (coarse_refine) chooses
   // the start itself, and the predictor then stays off.
   SecantPredictor secant_predictor = SecantPredictor::press;
 };
