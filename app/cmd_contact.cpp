@@ -13,6 +13,7 @@
 #include "app/contact_output.hpp"
 #include "app/launch.hpp"
 #include "app/print_summary.hpp"
+#include "app/scene_options.hpp"
 #include "lib/analytic/area_load_fit.hpp"
 #include "lib/analytic/contact_theory.hpp"
 #include "lib/scene/contact_scene.hpp"
@@ -35,34 +36,12 @@ namespace wr::app {
 namespace {
 
 struct ContactCli {
-  std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu, amg = "auto";
-  ContactTestOptions opt;
-  int steps = 4;
-  int shear_steps = 0;  // 0: as --steps
-  double pressure = 0;  // Pa, spectral load control
-  std::string thickness;  // spectral layer thickness, m or "inf"; empty: the block height
-  double spectral_tol = 1e-8;
-  int threads = 0;
-  int max_iterations = 0;  // 0: the model's default
-  bool quiet = false, vertical = false;
+  std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu;
+  SceneCli sc;  // every scene option (app/scene_options.hpp); `contact`'s defaults set in add_contact
+  bool quiet = false, trace = false;
   // Where --json and --out are written (OutputSet staging paths; committed together).
   std::string json_stage, out_stage;
 };
-
-// --thickness: metres or "inf" (half-space); empty gives `fallback`.
-double parse_thickness(const std::string& text, double fallback) {
-  if (text.empty()) return fallback;
-  if (text == "inf") return std::numeric_limits<double>::infinity();
-  std::size_t used = 0;
-  double t = 0;
-  try {
-    t = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !(t > 0)) throw InputError("--thickness", "must be a length > 0 in m, or inf");
-  return t;
-}
 
 // --json and --out (contact-face maps per step), each written atomically.
 void write_contact_files(const ContactCli& c, const nlohmann::json& summary, const std::vector<ContactStep>& steps,
@@ -119,7 +98,8 @@ void warn_if_invalid(ContactModel m, const std::vector<ValidityCheck>& checks) {
 // The analytic model: Persson's contact area (erf form, eq. 3.162 / 5.3) at each mean pressure.
 int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactRequest& req, const Validity& validity,
                  OutputSet& outputs) {
-  if (!(c.pressure > 0)) throw InputError("--pressure", "the analytic model needs a mean pressure, Pa");
+  const ContactScene& sc = c.sc.scene;
+  if (!(sc.pressure > 0)) throw InputError("--pressure", "the analytic model needs a mean pressure, Pa");
   if (!c.out.empty()) throw InputError("--out", "the analytic model has no contact maps");
   warn_if_invalid(validity.model, validity.checks);
   const auto t0 = std::chrono::steady_clock::now();
@@ -132,9 +112,9 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
     print_step_header();
   }
   nlohmann::json rows = nlohmann::json::array();
-  for (int k = 1; k <= c.steps; ++k) {
+  for (int k = 1; k <= sc.normal_steps; ++k) {
     ContactStep st;
-    const double p = c.pressure * double(k) / c.steps;
+    const double p = sc.pressure * double(k) / sc.normal_steps;
     st.sigma_star = p / (req.e_star * req.rms_slope);
     st.area_fraction = persson_area_fraction(st.sigma_star);
     st.contact_area = st.area_fraction * a0;
@@ -151,8 +131,8 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
-  prov.parameters = {{"problem", c.problem}, {"pressure", c.pressure}, {"steps", c.steps}, {"E", c.opt.young},
-                     {"nu", c.opt.poisson}};
+  prov.parameters = {{"problem", c.problem}, {"pressure", sc.pressure}, {"steps", sc.normal_steps}, {"E", sc.young},
+                     {"nu", sc.poisson}};
   prov.model = "analytic: Persson A/A0 = erf(sqrt(2) sigma*) (thesis eq. 3.162, 5.3); BGT kappa sigma* beside it";
   prov.timings = {{"total", wall}};
   nlohmann::json j = {{"model", "analytic"}, {"rms_slope", req.rms_slope}, {"e_star", req.e_star},
@@ -167,42 +147,22 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
 }
 
 // The contact scene the options describe, for `model`: what check_contact_scene validates for
-// every model, and what the spectral model runs.
+// every model, and what the models run.
 ContactScene scene_of(const ContactCli& c, ContactModel model) {
-  ContactScene scene;
+  ContactScene scene = c.sc.scene;
   scene.model = model;
   scene.shear = c.problem == "shear";
-  scene.uz = c.opt.uz;
-  scene.pressure = c.pressure;
-  scene.ux = c.opt.ux;
-  scene.normal_steps = c.steps;
-  scene.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
-  scene.refine = c.opt.refine;
-  scene.young = c.opt.young;
-  scene.poisson = c.opt.poisson;
-  scene.height = c.opt.height;
-  scene.thickness = parse_thickness(c.thickness, 0.0);  // 0: the block height
-  scene.damping = c.opt.damping;
-  scene.extrapolate_every = c.opt.extrapolate_every;
-  scene.tolerance = c.opt.tolerance;
-  scene.spectral_tolerance = c.spectral_tol;
-  scene.max_iterations = c.max_iterations;
-  scene.cutbacks = c.opt.max_cutbacks;
-  scene.predictor = c.opt.secant_predictor;
-  scene.max_penetration = c.opt.max_penetration;
-  scene.threads = c.threads;
-  scene.facet_normals = c.opt.facet_normals;
-  scene.facet_band = c.opt.facet_band;
   return scene;
 }
 
 // The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.
 int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validity& validity, OutputSet& outputs) {
-  if (c.opt.refine < 1 || c.opt.refine > 16) throw InputError("--refine", "must be 1 ... 16");
+  const ContactScene& sc = c.sc.scene;
+  if (sc.refine < 1 || sc.refine > 16) throw InputError("--refine", "must be 1 ... 16");
   // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
   LoadedSurface s;
   s.source = surface.source;
-  s.map = spectral_lattice(surface.map, c.opt.refine);
+  s.map = spectral_lattice(surface.map, sc.refine);
   ContactScene scene = scene_of(c, ContactModel::spectral);
   scene.planning = FftPlanning::measure;  // one run: the machine's fastest plans
   SpectralTestOptions o = spectral_test_options(scene, s.map);
@@ -225,13 +185,13 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
-  prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"pressure", c.pressure},
-                     {"steps", c.steps}, {"shear_steps", o.shear_steps}, {"damping", o.damping},
+  prov.parameters = {{"problem", c.problem}, {"uz", sc.uz}, {"ux", sc.ux}, {"pressure", sc.pressure},
+                     {"steps", sc.normal_steps}, {"shear_steps", o.shear_steps}, {"damping", o.damping},
                      {"geometry_tolerance", o.geometry_tolerance},
-                     {"E", c.opt.young}, {"nu", c.opt.poisson},
+                     {"E", sc.young}, {"nu", sc.poisson},
                      {"thickness", o.body.half_space() ? nlohmann::json("inf") : nlohmann::json(o.body.thickness)},
                      {"tolerance", o.solver.tolerance},
-                     {"cg_precision", o.solver.single_precision_cg() ? "single" : "double"}, {"threads", c.threads}};
+                     {"cg_precision", o.solver.single_precision_cg() ? "single" : "double"}, {"threads", sc.threads}};
   prov.model = "spectral: FFT boundary elements, periodic elastic " +
                std::string(o.body.half_space() ? "half-space" : "layer with a fixed far face") +
                ", Polonsky-Keer constrained CG (FFT-preconditioned)" +
@@ -246,7 +206,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
                             {"nodes", r.nx * r.ny},
                             {"dofs", r.nx * r.ny},
                             {"ranks", 1},
-                            {"threads", c.threads},
+                            {"threads", sc.threads},
                             {"thickness", o.body.half_space() ? nlohmann::json("inf") : nlohmann::json(o.body.thickness)},
                             {"wall_s", r.wall_s},
                             {"face_spacing", r.spacing},
@@ -262,7 +222,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
   if (r.failed)
     return report_failure(c, r.steps, o.shear ? "relative change per geometry iteration" : "Polonsky-Keer error per iteration");
   if (talk) {
-    std::printf("  %zu grid points, %d FFT thread(s)\n", r.nx * r.ny, c.threads > 0 ? c.threads : hardware_threads());
+    std::printf("  %zu grid points, %d FFT thread(s)\n", r.nx * r.ny, sc.threads > 0 ? sc.threads : hardware_threads());
     print_peak(peak, r.steps);
     std::printf("  timing [s]: setup %.2f  solve %.2f  total %.2f\n", r.wall_setup, t_sol, r.wall_s);
   }
@@ -279,10 +239,11 @@ int run_contact(ContactCli c) {
       throw InputError("--model", e.what());
     }
   }
-  if (c.shear_steps < 0) throw InputError("--shear-steps", "must be >= 1 (0: as --steps)");
+  finish_scene_options(c.sc);
+  const ContactScene& sc = c.sc.scene;
   // Every option checked before the work: the scene's as the sweeps check theirs. Under auto the
   // model is chosen later; load control (--pressure) then means a model other than the FEM.
-  const ContactModel checked = c.model != "auto" ? model : c.pressure > 0 ? ContactModel::spectral : ContactModel::fem;
+  const ContactModel checked = c.model != "auto" ? model : sc.pressure > 0 ? ContactModel::spectral : ContactModel::fem;
   check_contact_scene(scene_of(c, checked));
   // Every output checked (and staged) before the work; rank 0 writes them.
   OutputSet outputs(launch_rank_and_size().first == 0);
@@ -296,11 +257,11 @@ int run_contact(ContactCli c) {
   if (launch_rank_and_size().first == 0) print_load_warnings(s);  // also under -q
   ContactRequest req;
   req.shear = c.problem == "shear";
-  req.refine = c.opt.refine;
-  req.load_control = c.pressure > 0;
-  req.pressure = c.pressure;
+  req.refine = sc.refine;
+  req.load_control = sc.pressure > 0;
+  req.pressure = sc.pressure;
   req.rms_slope = rms_slope_finite_difference(s.map);
-  req.e_star = c.opt.young / (1 - c.opt.poisson * c.opt.poisson);
+  req.e_star = sc.young / (1 - sc.poisson * sc.poisson);
   if (c.model == "auto") {
     const ModelChoice choice = choose_model(req);
     std::string why;
@@ -325,24 +286,18 @@ int run_contact(ContactCli c) {
     throw InputError("--vtu", std::string("the ") + model_name(model) + " model has no block to write; --vtu is for fem");
   if (model == ContactModel::analytic) return run_analytic(c, s, req, validity, outputs);
   if (model == ContactModel::spectral) return run_spectral(c, s, validity, outputs);
-  if (c.pressure > 0) throw InputError("--pressure", "the fem model is displacement-controlled; give --uz");
-  if (!(c.opt.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
-  if (c.max_iterations > 0) c.opt.max_iterations = c.max_iterations;
-  c.opt.shear = c.problem == "shear";
-  if (c.opt.shear && c.opt.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
-  c.opt.amg = parse_amg_hierarchy(c.amg, "--amg");
-  c.opt.normal_steps = c.steps;
-  c.opt.shear_steps = c.shear_steps > 0 ? c.shear_steps : c.steps;
-  c.opt.follow_geometry = !c.vertical;
-  c.opt.rms_slope = rms_slope_finite_difference(s.map);
-  // On a wet obstacle the tolerance is the ground's, as in the sweeps (ContactScene::max_penetration).
-  if (c.opt.max_penetration == 0)
-    c.opt.max_penetration = default_max_penetration(c.wet.empty() ? s.map : load_surface(c.surface).map, 0);
-  if (c.opt.max_penetration < 0) c.opt.max_penetration = 0;  // no check
-  c.opt.face_maps = !c.out.empty();
-  c.opt.progress_every_s = c.quiet ? 0 : 10;
-  check_fem_options(c.opt);
-  c.opt.vtu_path = vtu_stage;
+  if (sc.pressure > 0) throw InputError("--pressure", "the fem model is displacement-controlled; give --uz");
+  if (!(sc.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
+  const ContactScene scene = scene_of(c, ContactModel::fem);
+  if (scene.shear && scene.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
+  SceneRunHooks hooks;
+  hooks.face_maps = !c.out.empty();
+  hooks.progress_every_s = c.quiet ? 0 : 10;
+  hooks.trace = c.trace;
+  hooks.vtu_path = vtu_stage;
+  // On a wet obstacle the penetration limit is the ground's, as in the sweeps.
+  const ContactTestOptions opt =
+      fem_test_options(scene, s.map, c.wet.empty() ? s.map : load_surface(c.surface).map, PETSC_COMM_WORLD, hooks);
 
   int argc = 1;
   char name[] = "wetroad";
@@ -358,13 +313,13 @@ int run_contact(ContactCli c) {
   if (rank == 0) warn_if_invalid(model, validity.checks);
   if (talk)
     std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g (triangulated); block %s, refine %d\n",
-                s.source.c_str(), s.map.nx, s.map.ny, s.map.dx, c.opt.rms_slope,
-                c.opt.height > 0 ? "custom height" : "cube", c.opt.refine);
+                s.source.c_str(), s.map.nx, s.map.ny, s.map.dx, opt.rms_slope,
+                opt.height > 0 ? "custom height" : "cube", opt.refine);
   if (talk) print_step_header();
   int k = 0;
   const ContactTestResult r = [&] {
     try {
-      return run_contact_test(s.map, c.opt, [&](const ContactStep& st) {
+      return run_contact_test(s.map, opt, [&](const ContactStep& st) {
         ++k;
         if (talk) print_step_row(k, st);
       });
@@ -375,7 +330,7 @@ int run_contact(ContactCli c) {
   }();
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& st : r.steps) steps.push_back(step_json(st));
-  if (c.opt.shear && c.opt.follow_geometry) {  // known only now: did the friction settle?
+  if (opt.shear && opt.follow_geometry) {  // known only now: did the friction settle?
     validity.checks.push_back(friction_convergence_check(r.steps));
     validity.checks.push_back(friction_peak_check(r.steps));
     validity.json = validity_json(model, validity.checks, validity.json["chosen_by"].get<std::string>());
@@ -384,17 +339,17 @@ int run_contact(ContactCli c) {
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
-  prov.parameters = {{"problem", c.problem}, {"uz", c.opt.uz}, {"ux", c.opt.ux}, {"steps", c.steps}, {"shear_steps", c.opt.shear_steps},
-                     {"refine", c.opt.refine}, {"E", c.opt.young}, {"nu", c.opt.poisson},
-                     {"layers_per_level", c.opt.layers_per_level}, {"max_coarsenings", c.opt.max_coarsenings},
-                     {"damping", c.opt.damping}, {"extrapolate_every", c.opt.extrapolate_every}, {"face_modes", c.opt.face_modes}, {"coarse_start", c.opt.coarse_refine}, {"tolerance", c.opt.tolerance}, {"ksp_rtol", c.opt.ksp_rtol}, {"max_penetration", c.opt.max_penetration}, {"cutbacks", c.opt.max_cutbacks}, {"predictor", secant_predictor_name(c.opt.secant_predictor)},
-                     {"follow_geometry", c.opt.follow_geometry}, {"amg", c.amg}, {"petsc", c.petsc},
-                     {"facet_normals", c.opt.facet_normals}, {"facet_band", c.opt.facet_band},
-                     {"block_normals", c.opt.block_normals}};
+  prov.parameters = {{"problem", c.problem}, {"uz", opt.uz}, {"ux", opt.ux}, {"steps", opt.normal_steps}, {"shear_steps", opt.shear_steps},
+                     {"refine", opt.refine}, {"E", opt.young}, {"nu", opt.poisson},
+                     {"layers_per_level", opt.layers_per_level}, {"max_coarsenings", opt.max_coarsenings},
+                     {"damping", opt.damping}, {"extrapolate_every", opt.extrapolate_every}, {"face_modes", opt.face_modes}, {"coarse_start", opt.coarse_refine}, {"tolerance", opt.tolerance}, {"ksp_rtol", opt.ksp_rtol}, {"max_penetration", opt.max_penetration}, {"cutbacks", opt.max_cutbacks}, {"predictor", secant_predictor_name(opt.secant_predictor)},
+                     {"follow_geometry", opt.follow_geometry}, {"amg", c.sc.amg}, {"petsc", c.petsc},
+                     {"facet_normals", opt.facet_normals}, {"facet_band", opt.facet_band},
+                     {"block_normals", opt.block_normals}};
   prov.model = std::string("fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative "
                            "Signorini (thesis Alg. 1), PDAS + CG/GAMG; constraint normal: ") +
-               (c.opt.block_normals > 0 ? "the block's face normal (experimental, not a rigid obstacle's force)"
-                : c.opt.facet_normals   ? "the obstacle facet's"
+               (opt.block_normals > 0 ? "the block's face normal (experimental, not a rigid obstacle's force)"
+                : opt.facet_normals   ? "the obstacle facet's"
                                         : "the obstacle's smooth vertex-normal blend");
   double t_lin = 0, t_rot = 0, t_sol = 0;
   for (const auto& st : r.steps) {
@@ -459,94 +414,29 @@ Command add_contact(CLI::App& root) {
       "It runs on FFT threads (--threads), not on MPI ranks.\n"
       "Example: wetroad contact --surface road.h5 --problem shear --uz 9e-3 --ux 1e-3 --json mu.json\n"
       "         wetroad contact --surface road.h5 --model spectral --thickness inf --pressure 0.01 --steps 10");
+  // `contact`'s defaults: a finer face and a tighter iteration than the sweeps' many runs use.
+  ContactScene& sc = c->sc.scene;
+  sc.refine = 2;
+  sc.tolerance = 1e-5;
+  sc.normal_steps = 4;
+  sc.shear_steps = 0;  // as --steps
+  sc.threads = 0;      // spectral FFT threads: all cores
   s->add_option("--surface", c->surface, "surface file (periodic HDF5 height map)")->required();
   s->add_option("--wet", c->wet, "wet surface from `wetroad fill` (used as the obstacle instead)");
   s->add_option("--problem", c->problem, "normal (Problem A) or shear (Problem B)")->capture_default_str();
-  s->add_option("--uz", c->opt.uz, "final downward displacement of the top face, m");
-  s->add_option("--pressure", c->pressure, "analytic and spectral models: final mean pressure, Pa (load control; instead of --uz)");
-  s->add_option("--thickness", c->thickness,
-                "spectral model: layer thickness in m, or inf for a half-space (default: the block height)");
-  s->add_option("--spectral-tol", c->spectral_tol,
-                "spectral model: relative l1 pressure change per iteration that ends a step (>= 1e-9: the CG runs in "
-                "single precision, below it in double)")
-      ->capture_default_str();
-  s->add_option("--threads", c->threads, "spectral model: FFT threads (default: all cores)");
-  s->add_option("--ux", c->opt.ux, "final tangential displacement of the top face (shear), m");
-  s->add_option("--steps", c->steps, "load steps per phase")->capture_default_str();
-  s->add_option("--shear-steps", c->shear_steps, "load steps of the shear phase (default: --steps)");
-  s->add_option("--refine", c->opt.refine,
-                 "contact-face spacing = surface spacing / refine (fem mesh; spectral grid on the triangulated surface)")
-      ->capture_default_str();
-  s->add_option("--height", c->opt.height, "block height in m (default: the period, a cube)");
-  s->add_option("--layers", c->opt.layers_per_level,
-                "brick layers at each in-plane spacing (more: softer, more accurate bulk; 4 converge it, "
-                "1 is too stiff: A/A0 at a given load ~25 % low at refine 1-2, see docs/validation.md)")
-      ->capture_default_str();
-  s->add_option("--coarsen", c->opt.max_coarsenings, "in-plane spacing doublings allowed away from the face")
-      ->capture_default_str();
-  s->add_option("--E", c->opt.young, "Young's modulus, Pa (forces scale with it)")->capture_default_str();
-  s->add_option("--nu", c->opt.poisson, "Poisson's ratio")->capture_default_str();
-  s->add_option("--damping", c->opt.damping, "damping alpha_c of the geometry iteration (fem Signorini, spectral shear)")->capture_default_str();
-  s->add_option("--extrapolate", c->opt.extrapolate_every,
-                "fem: Aitken jump along the slow mode (the face's creep) every N Signorini iterations; 0: off; "
-                "not with --facet-normals (their iteration is not smooth)")
-      ->capture_default_str();
-  s->add_flag("--face-modes", c->opt.face_modes,
-              "fem, fixed top, with --extrapolate: also jump along the face's slide, lateral expansion and twist "
-              "(experimental)");
-  s->add_option("--coarse-start", c->opt.coarse_refine,
-                "fem: nested iteration; every step is solved first on a block of this refinement (below --refine, "
-                "dividing it), and its increment starts the step on the fine block; 0: off (experimental)")
-      ->capture_default_str();
-  s->add_option("--max-penetration", c->opt.max_penetration,
-                 "deepest penetration a converged step may leave, m (default 0.1 x the rms height of --surface, the "
-                 "ground also under --wet; negative: no check)");
-  s->add_option("--cutbacks", c->opt.max_cutbacks,
-                 "fem: a failed load step is retried from the last converged one in two halves, each halvable again, "
-                 "down to this many times (0 ... 8; 0: a failed step ends the run)")
-      ->capture_default_str();
-  s->add_option("--predictor", c->opt.secant_predictor,
-                "fem: which steps that continue the previous one's direction start from the last state extrapolated "
-                "along the last increment (secant predictor): off, press (the normal steps; the default) or all "
-                "(also the shear steps: faster, but it can reach the snap over the asperities earlier; see docs/fem-solver.md); "
-                "off under --coarse-start")
-      ->transform(CLI::CheckedTransformer(secant_predictor_names(), CLI::ignore_case))
-      ->option_text("off|press|all (default press)");
-  s->add_option("--ksp-rtol", c->opt.ksp_rtol, "CG relative tolerance of a step's final linear solves")
-      ->capture_default_str();
-  s->add_option("--tol", c->opt.tolerance, "relative change of the face displacement that ends a step (fem; spectral shear)")
-      ->capture_default_str();
-  s->add_option("--max-iterations", c->max_iterations,
-                 "iterations allowed per step (default: fem 300 Signorini iterations; spectral 5000 CG iterations, or 200 "
-                 "geometry iterations in a shear test)");
-  s->add_flag("--vertical", c->vertical, "linearise once with vertical normals (small-slope approximation)");
   s->add_option("--model", c->model,
-                 "contact model: analytic (Persson/BGT, needs --pressure), spectral (periodic layer / half-space), fem "
-                 "(finite block), or auto (the cheapest whose validity checks pass)")
+                "contact model: analytic (Persson/BGT, needs --pressure), spectral (periodic layer / half-space), fem "
+                "(finite block), or auto (the cheapest whose validity checks pass)")
       ->capture_default_str();
+  add_scene_options(*s, c->sc);
+  s->add_option("--pressure", sc.pressure, "analytic and spectral models: final mean pressure, Pa (load control; instead of --uz)");
+  s->add_option("--threads", sc.threads, "spectral model: FFT threads (default: all cores)");
   s->add_option("--json", c->json, "write the per-step results as JSON (SI units)");
   s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5");
   s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)");
-  s->add_option("--amg", c->amg,
-                "fem: CG's AMG hierarchy: standard (smoothed aggregation), lean (unsmoothed aggregation, "
-                "all-at-once products: ~5.3 instead of ~8.4 KiB per node, more CG iterations), or auto (lean only "
-                "where standard would exceed 80 % of this host's memory)")
-      ->capture_default_str();
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
-  s->add_flag("--facet-normals", c->opt.facet_normals,
-              "constrain along the hit triangle's normal instead of the smooth vertex-normal blend");
-  s->add_option("--facet-band", c->opt.facet_band,
-                "with --facet-normals: blend into the smooth normal within this barycentric band of the "
-                "triangle edges (0 ... 1; 0: pure facet normals)");
-  s->add_option("--block-normals", c->opt.block_normals,
-                "experimental: constrain each node along the block's own deformed face normal (the thesis's "
-                "reading of sec. 4.2.1) instead of the obstacle's, the normal relaxed by this factor per Signorini "
-                "iteration (0 ... 1; 0: off). Not a physical model of a rigid frictionless obstacle: for comparison "
-                "with the thesis only (docs/validation.md)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->excludes("--facet-normals");
-  s->add_flag("--trace", c->opt.trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time)");
+  s->add_flag("--trace", c->trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time)");
   return {s, [c] { return run_contact(*c); }};
 }
 

@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/launch.hpp"
 #include "app/print_summary.hpp"
+#include "app/scene_options.hpp"
 #include "app/synth_options.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
@@ -32,11 +33,11 @@ namespace {
 // model) and the outputs.
 struct SweepCommonCli {
   std::string model = "fem", out, csv, json, plots;
-  ContactScene scene;
+  SceneCli sc;  // every scene option (app/scene_options.hpp), with the sweeps' defaults
   std::string compound;
   double pressure = 3e5, temperature = 20, speed = kLockedWheelSpeed, friction_q1 = 0;
   bool flash = false;
-  CLI::Option *uz_opt = nullptr, *ux_opt = nullptr, *q1_opt = nullptr;
+  CLI::Option* q1_opt = nullptr;
   int threads = 0;
   bool resume = false, quiet = false;
 };
@@ -45,42 +46,13 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_option("--model", c.model, "friction model: fem (finite block), spectral (periodic layer), auto (the ladder's "
               "cheapest contact model valid for friction): elastostatic friction; or hysteresis (Persson's mu at --speed)")
       ->capture_default_str();
-  c.uz_opt = s.add_option("--uz", c.scene.uz, "contact models (required): final normal displacement of the block's top, m");
-  c.ux_opt = s.add_option("--ux", c.scene.ux, "contact models (required): final tangential displacement of the top, m");
+  add_scene_options(s, c.sc);
   s.add_option("--compound", c.compound, "hysteresis: compound JSON (default share/compounds/synthetic-tread.json)");
   s.add_option("--pressure", c.pressure, "hysteresis: nominal pressure sigma0, Pa")->capture_default_str();
   s.add_option("--temperature", c.temperature, "hysteresis: temperature, deg C")->capture_default_str();
   s.add_option("--speed", c.speed, "hysteresis: sliding speed, m/s (default 17.9: the locked wheel at 64 km/h)");
   c.q1_opt = s.add_option("--friction-q1", c.friction_q1, "hysteresis: spectrum cut-off q1, 1/m (as `friction --q1`)");
   s.add_flag("--flash-temperature", c.flash, "hysteresis: with the flash temperature (as `friction`)");
-  s.add_option("--steps", c.scene.normal_steps, "normal load steps")->capture_default_str();
-  s.add_option("--shear-steps", c.scene.shear_steps, "shear steps")->capture_default_str();
-  s.add_option("--refine", c.scene.refine, "contact-face spacing = surface spacing / refine")->capture_default_str();
-  s.add_option("--E", c.scene.young, "Young's modulus, Pa")->capture_default_str();
-  s.add_option("--nu", c.scene.poisson, "Poisson's ratio")->capture_default_str();
-  s.add_option("--height", c.scene.height, "block height (spectral: layer thickness), m; 0 = a cube")->capture_default_str();
-  s.add_option("--tol", c.scene.tolerance, "relative change per geometry (Signorini) iteration")->capture_default_str();
-  s.add_option("--spectral-tol", c.scene.spectral_tolerance, "spectral normal solver tolerance (>= 1e-9: single-precision CG)")->capture_default_str();
-  s.add_option("--max-iterations", c.scene.max_iterations, "per step (0: the model's default)");
-  s.add_option("--damping", c.scene.damping, "damping alpha_c of the geometry (Signorini) iteration (as `contact --damping`)")
-      ->capture_default_str();
-  s.add_option("--cutbacks", c.scene.cutbacks,
-               "fem: halvings allowed of a failed load step (as `contact --cutbacks`; 0: a failed step fails the run)")
-      ->capture_default_str();
-  s.add_option("--predictor", c.scene.predictor,
-               "fem: secant predictor for off, press (the default) or all load steps (as `contact --predictor`)")
-      ->transform(CLI::CheckedTransformer(secant_predictor_names(), CLI::ignore_case))
-      ->option_text("off|press|all (default press)");
-  s.add_option("--extrapolate", c.scene.extrapolate_every,
-               "fem: slow-mode jump every N Signorini iterations (as `contact --extrapolate`; 0: off)")
-      ->capture_default_str();
-  s.add_option("--max-penetration", c.scene.max_penetration,
-               "fem: deepest penetration a converged step may leave, m (as `contact --max-penetration`; 0: 0.1 x the "
-               "ground's rms height; negative: no check)")
-      ->capture_default_str();
-  s.add_flag("--facet-normals", c.scene.facet_normals,
-             "fem: constrain contact nodes along the obstacle facet's normal (as `contact --facet-normals`)");
-  s.add_option("--facet-band", c.scene.facet_band, "with --facet-normals: smooth band at facet edges (as `contact`)");
   s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)");
   s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->required();
   s.add_option("--csv", c.csv, "also write the table as CSV");
@@ -117,12 +89,12 @@ ContactModel parse_sweep_model(const std::string& name, bool quiet) {
 // contact models, which need --uz and --ux.
 std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
   if (c.model != "hysteresis") {
-    if (!c.uz_opt->count()) throw InputError("--uz", "required by the contact models (fem, spectral, auto)");
-    if (!c.ux_opt->count()) throw InputError("--ux", "required by the contact models (fem, spectral, auto)");
+    if (!c.sc.uz->count()) throw InputError("--uz", "required by the contact models (fem, spectral, auto)");
+    if (!c.sc.ux->count()) throw InputError("--ux", "required by the contact models (fem, spectral, auto)");
     return std::nullopt;
   }
-  if (c.uz_opt->count() || c.ux_opt->count())
-    throw InputError(c.uz_opt->count() ? "--uz" : "--ux", "the hysteresis model has no block to displace (see --speed)");
+  if (c.sc.uz->count() || c.sc.ux->count())
+    throw InputError(c.sc.uz->count() ? "--uz" : "--ux", "the hysteresis model has no block to displace (see --speed)");
   FrictionScene s;
   s.compound_path = c.compound.empty() ? default_compound_path() : c.compound;
   s.compound = read_compound_json(s.compound_path);
@@ -296,7 +268,9 @@ CoverageSweepSpec coverage_spec(const CoverageCli& c) {
     require_periodic_map(surface, "the contact scene repeats the surface");
     if (launch_rank_and_size().first == 0) print_load_warnings(surface);
   }
-  s.scene = c.common.scene;
+  SceneCli sc = c.common.sc;
+  finish_scene_options(sc);
+  s.scene = sc.scene;
   s.hysteresis = hysteresis_scene(c.common);
   if (!s.hysteresis) s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
   if (c.tiling != "torus" && c.tiling != "3x3") throw InputError("--tiling", "must be torus or 3x3");
@@ -386,7 +360,9 @@ RoughnessSweepSpec roughness_spec(const RoughnessCli& c) {
     if (c.synth.given("--sampling")) s.base.sampling = o.sampling;
     if (c.synth.given("--seed")) s.base.seed = o.seed;
   }
-  s.scene = c.common.scene;
+  SceneCli sc = c.common.sc;
+  finish_scene_options(sc);
+  s.scene = sc.scene;
   s.hysteresis = hysteresis_scene(c.common);
   if (!s.hysteresis) s.scene.model = parse_sweep_model(c.common.model, c.common.quiet);
   check_roughness_spec(s);
@@ -471,7 +447,7 @@ Command add_sweep_coverage(CLI::App& root) {
 
 Command add_sweep_roughness(CLI::App& root) {
   auto c = std::make_shared<RoughnessCli>();
-  c->common.scene.normal_steps = 8;  // the normal curve's quartic fit needs points
+  c->common.sc.scene.normal_steps = 8;  // the normal curve's quartic fit needs points
   CLI::App* s = root.add_subcommand("sweep-roughness", "friction and contact area over h0, H or q1 (thesis Tables C.1, D.1-D.3)");
   s->footer(
       "The thesis's datasets (Table 5.1: 300 x 300 over 3 cm, q0 = 5 qL, H 0.7, h0 0.71 mm unless swept):\n"

@@ -14,6 +14,42 @@
 
 namespace wr {
 
+namespace {
+
+// The scene's options of the block, without what depends on the obstacle (slope, penetration
+// default) or on the run (communicator, outputs).
+ContactTestOptions block_options(const ContactScene& s) {
+  ContactTestOptions o;
+  o.shear = s.shear;
+  o.uz = s.uz;
+  o.ux = s.ux;
+  o.normal_steps = s.normal_steps;
+  o.shear_steps = s.shear_steps;
+  o.refine = s.refine;
+  o.coarse_refine = s.coarse_refine;
+  o.height = s.height;
+  o.layers_per_level = s.layers_per_level;
+  o.max_coarsenings = s.max_coarsenings;
+  o.young = s.young;
+  o.poisson = s.poisson;
+  o.follow_geometry = s.follow_geometry;
+  o.tolerance = s.tolerance;
+  o.damping = s.damping;
+  o.extrapolate_every = s.extrapolate_every;
+  o.face_modes = s.face_modes;
+  o.ksp_rtol = s.ksp_rtol;
+  if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
+  o.max_cutbacks = s.cutbacks;
+  o.secant_predictor = s.predictor;
+  o.facet_normals = s.facet_normals;
+  o.facet_band = s.facet_band;
+  o.block_normals = s.block_normals;
+  o.amg = s.amg;
+  return o;
+}
+
+}  // namespace
+
 void check_contact_scene(const ContactScene& s) {
   const bool spectral = s.model == ContactModel::spectral;
   if (s.model == ContactModel::analytic && s.shear)
@@ -28,6 +64,11 @@ void check_contact_scene(const ContactScene& s) {
   if (s.max_iterations < 0 || s.max_iterations > kMaxIterations)
     throw InputError("--max-iterations", "must be 0 (the model's default) ... " + std::to_string(kMaxIterations));
   if (s.threads < 0) throw InputError("--threads", "must be >= 0 (0: all hardware threads)");
+  if (s.model == ContactModel::fem) {  // the block's own options, as the run will check them
+    ContactTestOptions o = block_options(s);
+    o.max_penetration = std::max(0.0, s.max_penetration);
+    check_fem_options(o);
+  }
   // The per-step records keep each iteration's residual: refuse a run whose worst case cannot fit.
   const int iterations = s.max_iterations > 0 ? s.max_iterations : (spectral ? 5000 : 300);
   require_memory(std::size_t(s.normal_steps + (s.shear ? s.shear_steps : 0)) * std::size_t(iterations), 2 * sizeof(double),
@@ -52,30 +93,8 @@ void summarise(SceneResult& r) {
   if (r.failed && r.message.empty()) r.message = "contact run failed";
 }
 
-SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, double rms_slope, MPI_Comm comm) {
-  ContactTestOptions o;
-  o.shear = s.shear;
-  o.uz = s.uz;
-  o.ux = s.ux;
-  o.normal_steps = s.normal_steps;
-  o.shear_steps = s.shear_steps;
-  o.refine = s.refine;
-  o.height = s.height;
-  o.young = s.young;
-  o.poisson = s.poisson;
-  o.tolerance = s.tolerance;
-  o.damping = s.damping;
-  o.extrapolate_every = s.extrapolate_every;
-  if (s.max_iterations > 0) o.max_iterations = s.max_iterations;
-  o.max_cutbacks = s.cutbacks;
-  o.secant_predictor = s.predictor;
-  o.rms_slope = rms_slope;
-  // 0: the default; negative: no check (as `contact --max-penetration`).
-  o.max_penetration = s.max_penetration > 0 ? s.max_penetration : s.max_penetration < 0 ? 0 : default_max_penetration(obstacle);
-  o.comm = comm;
-  o.facet_normals = s.facet_normals;
-  o.facet_band = s.facet_band;
-  const ContactTestResult t = run_contact_test(obstacle, o);
+SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
+  const ContactTestResult t = run_contact_test(obstacle, fem_test_options(s, obstacle, obstacle, comm));
   SceneResult r;
   r.model = "fem";
   r.steps = t.steps;
@@ -109,7 +128,7 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   req.rms_slope = rms_slope_finite_difference(obstacle, 1);
   req.e_star = s.young / (1 - s.poisson * s.poisson);
   auto checks = validity_checks(s.model, req);
-  SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, req.rms_slope, comm) : run_spectral(obstacle, s);
+  SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, comm) : run_spectral(obstacle, s);
   if (s.model == ContactModel::fem && s.shear) {
     checks.push_back(friction_convergence_check(r.steps));
     checks.push_back(friction_peak_check(r.steps));
@@ -162,6 +181,21 @@ nlohmann::json scene_result_json(const SceneResult& r) {
           {"unknowns", r.unknowns},
           {"steps", steps},
           {"validity", r.validity}};
+}
+
+ContactTestOptions fem_test_options(const ContactScene& s, const HeightMap& obstacle, const HeightMap& ground,
+                                    MPI_Comm comm, const SceneRunHooks& hooks) {
+  ContactTestOptions o = block_options(s);
+  o.rms_slope = rms_slope_finite_difference(obstacle, 1);
+  // 0: the default; negative: no check.
+  o.max_penetration = s.max_penetration > 0 ? s.max_penetration : s.max_penetration < 0 ? 0 : default_max_penetration(ground);
+  o.comm = comm;
+  o.face_maps = hooks.face_maps;
+  o.vtu_path = hooks.vtu_path;
+  o.progress_every_s = hooks.progress_every_s;
+  o.trace = hooks.trace;
+  check_fem_options(o);
+  return o;
 }
 
 SpectralTestOptions spectral_test_options(const ContactScene& s, const HeightMap& lattice) {
@@ -218,7 +252,15 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"predictor", secant_predictor_name(s.predictor)},
           {"max_penetration", s.max_penetration},
           {"facet_normals", s.facet_normals},
-          {"facet_band", s.facet_band}};
+          {"facet_band", s.facet_band},
+          {"layers_per_level", s.layers_per_level},
+          {"max_coarsenings", s.max_coarsenings},
+          {"coarse_start", s.coarse_refine},
+          {"face_modes", s.face_modes},
+          {"ksp_rtol", s.ksp_rtol},
+          {"follow_geometry", s.follow_geometry},
+          {"block_normals", s.block_normals},
+          {"amg", amg_hierarchy_name(s.amg)}};
 }
 
 }  // namespace wr

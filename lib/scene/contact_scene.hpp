@@ -7,6 +7,7 @@
 // the calling process. The analytic model has no shear test and is refused.
 #include <mpi.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "lib/contact/model_ladder.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/core/height_map.hpp"
+#include "lib/fem/amg_hierarchy.hpp"
 #include "lib/fem/block_press_shear.hpp"
 #include "lib/spectral/spectral_press_shear.hpp"
 
@@ -50,6 +52,24 @@ struct ContactScene {
   // of the face's vertex normals; tangential forces then come from the obstacle's flanks.
   bool facet_normals = false;
   double facet_band = 0;  // > 0: facet normals blended into the smooth ones near facet edges
+  // FEM mesh and solver (ContactTestOptions says what each does).
+  int layers_per_level = 2;   // brick layers at each in-plane spacing
+  int max_coarsenings = 16;   // in-plane doublings of the spacing away from the face
+  int coarse_refine = 0;      // nested iteration's coarse block (0: off; experimental)
+  bool face_modes = false;    // slow-mode jumps along the face's rigid modes too (experimental)
+  double ksp_rtol = 1e-7;     // CG tolerance of a step's final linear solves
+  bool follow_geometry = true;  // false: one linearisation with vertical normals
+  double block_normals = 0;   // > 0: the block's own normals, relaxed so (experimental)
+  AmgHierarchy amg = AmgHierarchy::automatic;
+};
+
+// What a run of a scene needs beyond the scene itself: where its results go while it runs.
+struct SceneRunHooks {
+  std::function<void(const ContactStep&)> on_step;  // after every step (may be empty)
+  bool face_maps = false;         // keep the contact-face maps of every step
+  std::string vtu_path;           // fem: write the deformed block of the last step
+  double progress_every_s = 0;    // fem: a progress line at most this often within a step
+  bool trace = false;             // fem: every Signorini iteration on stderr
 };
 
 struct SceneResult {
@@ -91,6 +111,13 @@ double default_max_penetration(const HeightMap& ground, int threads = 1);
 // refine, resample_triangulated), after checking that the solver's working set (about 24 doubles
 // per grid point: maps, FFT buffers, CG vectors) fits this machine's memory (InputError --refine).
 HeightMap spectral_lattice(const HeightMap& obstacle, int refine);
+
+// The FEM's options for the scene on `obstacle` (periodic): the one mapping from a scene to the
+// block's run, used by the scene's runs and by `contact`. The penetration limit's default (0)
+// is 0.1 x the rms height of `ground` (the dry surface, also under a wet obstacle); negative
+// switches the check off. Throws InputError as check_fem_options.
+ContactTestOptions fem_test_options(const ContactScene& s, const HeightMap& obstacle, const HeightMap& ground,
+                                    MPI_Comm comm, const SceneRunHooks& hooks = {});
 
 // The spectral model's options for the scene on `lattice` (the obstacle already resampled to
 // the face lattice, resample_triangulated). Throws InputError as check_spectral_test_options.
