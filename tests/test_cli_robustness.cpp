@@ -283,3 +283,32 @@ TEST_F(Robust, SweepsTakeTheHysteresisModel) {
   expect_refused(cov + path("x.h5") + " --uz 1e-3 --ux 1e-3", "--uz: the hysteresis model has no block to displace");
   expect_refused("sweep-coverage --size 16 --dx 1e-3 --coverages 0 --out " + path("y.h5"), "--uz: required by the contact models");
 }
+
+// Every scene option from every command that runs a scene: --layers (bricks per in-plane
+// spacing) through contact and both sweeps changes the block's node count and is recorded.
+TEST_F(Robust, SceneOptionsReachEveryCommandThatRunsAScene) {
+  const std::string scene = " --uz 5e-4 --ux 3e-4 --steps 1 --shear-steps 1 --refine 1 --tol 1e-3 --max-iterations 60";
+  std::size_t nodes[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const std::string layers = k == 0 ? " --layers 1" : " --layers 3";
+    const CliRun c = run("contact --surface " + path("a.h5") + " --problem shear" + scene + layers + " -q --json " +
+                         path("c" + std::to_string(k) + ".json"));
+    ASSERT_EQ(c.code, 0) << c.err;
+    const nlohmann::json j = nlohmann::json::parse(slurp(path("c" + std::to_string(k) + ".json")));
+    EXPECT_EQ(j["provenance"]["parameters"]["layers_per_level"], k == 0 ? 1 : 3);
+    nodes[k] = j["nodes"].get<std::size_t>();
+  }
+  EXPECT_LT(nodes[0], nodes[1]);
+  const CliRun cov = run("sweep-coverage --surface " + path("a.h5") + " --coverages 0" + scene + " --layers 3 -q --out " +
+                         path("s.h5") + " --json " + path("s.json"));
+  ASSERT_EQ(cov.code, 0) << cov.err;
+  const nlohmann::json s = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(s["spec"]["scene"]["layers_per_level"], 3);
+  EXPECT_EQ(s["runs"][0]["contact"]["unknowns"].get<std::size_t>(), nodes[1]);
+  const CliRun rough = run("sweep-roughness --dataset A --values 1e-4 --realizations 1 --size 16 --dx 1.875e-3 --seed 3" +
+                           scene + " --layers 3 -q --out " + path("r.h5") + " --json " + path("r.json"));
+  ASSERT_EQ(rough.code, 0) << rough.err;
+  const nlohmann::json r = nlohmann::json::parse(slurp(path("r.json")));
+  EXPECT_EQ(r["spec"]["scene"]["layers_per_level"], 3);
+  EXPECT_EQ(r["runs"][0]["contact"]["unknowns"].get<std::size_t>(), nodes[1]);  // same 16 x 16 grid
+}
