@@ -57,7 +57,7 @@ void write_contact_files(const ContactCli& c, const nlohmann::json& summary, con
     w.write_matrix(g + "/pressure", st.face_pressure.data(), face_ny, face_nx);
     w.write_matrix(g + "/gap", st.face_gap.data(), face_ny, face_nx);
     w.write_matrix(g + "/status", st.face_status.data(), face_ny, face_nx);
-    w.write_attr(g, "summary", step_json(st).dump());
+    w.write_attr(g, "summary", contact_step_json(st).dump());
   }
   w.write_attr("/", "face_spacing", face_spacing);
   w.write_attr("/", "summary", summary.dump());
@@ -123,7 +123,7 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
     st.converged = true;
     steps.push_back(st);
     if (talk) print_step_row(k, st);
-    nlohmann::json row = step_json(st);
+    nlohmann::json row = contact_step_json(st);
     row["area_fraction_bgt"] = kappa_bgt() * st.sigma_star;
     rows.push_back(row);
   }
@@ -181,7 +181,7 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
     if (talk) print_step_row(++k, st);
   });
   nlohmann::json steps = nlohmann::json::array();
-  for (const auto& st : r.steps) steps.push_back(step_json(st));
+  for (const auto& st : r.steps) steps.push_back(contact_step_json(st));
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
@@ -329,7 +329,7 @@ int run_contact(ContactCli c) {
     }
   }();
   nlohmann::json steps = nlohmann::json::array();
-  for (const auto& st : r.steps) steps.push_back(step_json(st));
+  for (const auto& st : r.steps) steps.push_back(contact_step_json(st));
   if (opt.shear && opt.follow_geometry) {  // known only now: did the friction settle?
     validity.checks.push_back(friction_convergence_check(r.steps));
     validity.checks.push_back(friction_peak_check(r.steps));

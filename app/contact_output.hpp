@@ -9,9 +9,6 @@
 
 namespace wr::app {
 
-// One step as the contact JSON records it (SI units; null where not measured).
-nlohmann::json step_json(const ContactStep& s);
-
 // The area-load fits over the converged normal steps: the low-pressure kappa (sec. 5.2.3), the
 // quartic (eq. 5.4) and YAM (eq. 3.179) from four or more; null without a converged normal step.
 // `talk`: print them. `central_ratio` > 0 adds kappa with sigma* over the central-difference slope.

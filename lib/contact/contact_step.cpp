@@ -32,4 +32,39 @@ bool peak_reached(const std::vector<ContactStep>& steps) {
   return false;
 }
 
+nlohmann::json contact_step_json(const ContactStep& s) {
+  return {{"uz", s.uz},
+          {"ux", s.ux},
+          {"fz", s.fz},
+          {"fx", s.fx},
+          {"fy", s.fy},
+          {"area_fraction", s.area_fraction},
+          {"contact_area", s.contact_area},
+          {"sigma_star", s.sigma_star},
+          {"mu", s.mu},
+          {"separation", s.separation},
+          {"max_penetration", s.max_penetration},
+          {"max_penetration_at", {s.penetration_x, s.penetration_y}},
+          {"nodes_over_max_penetration", s.nodes_over_penetration},
+          {"signorini_iterations", s.signorini_iterations},
+          {"active_set_iterations", s.active_set_iterations},
+          {"linear_iterations", s.linear_iterations},
+          {"extrapolations", s.extrapolations},
+          {"rejected_jumps", s.rejected_jumps},
+          {"failed_attempts", s.failed_attempts},
+          {"predictor_ratio", s.predictor_ratio},
+          {"wall_s", s.wall_s},
+          {"converged", s.converged},
+          {"message", s.message},
+          {"residual_history", s.history},
+          // How much mu still moved at the end (friction_convergence.hpp); null where not measured.
+          {"mu_drift", std::isfinite(s.mu_drift) ? nlohmann::json(s.mu_drift) : nlohmann::json(nullptr)},
+          {"mu_history", s.mu_history},
+          {"coarse_start", s.coarse_iterations > 0
+                               ? nlohmann::json{{"signorini_iterations", s.coarse_iterations},
+                                                {"wall_s", s.coarse_wall_s},
+                                                {"converged", s.coarse_converged}}
+                               : nlohmann::json(nullptr)}};
+}
+
 }  // namespace wr

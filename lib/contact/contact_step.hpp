@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace wr {
 
 struct ContactStep {
@@ -61,5 +63,9 @@ const ContactStep* peak_friction(const std::vector<ContactStep>& steps);
 // bounded from below by the peak mu: on rough surfaces (rms slope ~2) mu still rises after the
 // top has moved half the block's side, so a short --ux reports the loading curve, not the peak.
 bool peak_reached(const std::vector<ContactStep>& steps);
+
+// One step as every contact record holds it (`contact --json`, the sweeps' run records; SI
+// units; null where not measured).
+nlohmann::json contact_step_json(const ContactStep& s);
 
 }  // namespace wr

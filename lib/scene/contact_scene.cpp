@@ -153,22 +153,7 @@ SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactSce
 
 nlohmann::json scene_result_json(const SceneResult& r) {
   nlohmann::json steps = nlohmann::json::array();
-  for (const auto& st : r.steps)
-    steps.push_back({{"uz", st.uz},
-                     {"ux", st.ux},
-                     {"fz", st.fz},
-                     {"fx", st.fx},
-                     {"mu", st.mu},
-                     {"area_fraction", st.area_fraction},
-                     {"sigma_star", st.sigma_star},
-                     {"separation", st.separation},
-                     {"max_penetration", st.max_penetration},
-                     {"iterations", st.signorini_iterations},
-                     {"failed_attempts", st.failed_attempts},
-                     {"predictor_ratio", st.predictor_ratio},
-                     {"mu_drift", std::isfinite(st.mu_drift) ? nlohmann::json(st.mu_drift) : nlohmann::json(nullptr)},
-                     {"converged", st.converged},
-                     {"wall_s", st.wall_s}});
+  for (const auto& st : r.steps) steps.push_back(contact_step_json(st));
   // NaN (a failed run's missing peak) is not JSON: null instead.
   return {{"model", r.model},
           {"mu_peak", std::isfinite(r.mu_peak) ? nlohmann::json(r.mu_peak) : nlohmann::json(nullptr)},

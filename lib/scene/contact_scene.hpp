@@ -97,8 +97,8 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
 SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
 
 // The run as sweeps record it: {model, mu_peak (null without a peak), ux_peak, area_at_peak,
-// area_normal, fz_normal, failed, message, unknowns, steps [{uz, ux, fz, fx, mu, area_fraction,
-// sigma_star, separation, max_penetration, iterations, failed_attempts, converged, wall_s}], validity}.
+// area_normal, fz_normal, failed, message, unknowns, steps [contact_step_json, the layout of
+// `contact --json`], validity}.
 nlohmann::json scene_result_json(const SceneResult& r);
 
 nlohmann::json contact_scene_json(const ContactScene& s);
