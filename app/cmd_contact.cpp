@@ -159,27 +159,28 @@ ContactScene scene_of(const ContactCli& c, ContactModel model) {
 int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validity& validity, OutputSet& outputs) {
   const ContactScene& sc = c.sc.scene;
   if (sc.refine < 1 || sc.refine > 16) throw InputError("--refine", "must be 1 ... 16");
-  // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
-  LoadedSurface s;
-  s.source = surface.source;
-  s.map = spectral_lattice(surface.map, sc.refine);
   ContactScene scene = scene_of(c, ContactModel::spectral);
   scene.planning = FftPlanning::measure;  // one run: the machine's fastest plans
-  SpectralTestOptions o = spectral_test_options(scene, s.map);
-  o.face_maps = !c.out.empty();
   warn_if_invalid(validity.model, validity.checks);
   const bool talk = !c.quiet;
-  if (talk) {
-    std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g; spectral model, %s\n", s.source.c_str(), s.map.nx,
-                s.map.ny, s.map.dx, o.rms_slope,
-                o.body.half_space() ? "half-space" : "layer with its far face fixed");
-    if (!o.body.half_space()) std::printf("  layer thickness %.4g m\n", o.body.thickness);
+  SceneRunHooks hooks;
+  hooks.face_maps = !c.out.empty();
+  // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
+  hooks.on_setup = [&](const SceneSetup& g) {
+    if (!talk) return;
+    const bool half_space = std::isinf(g.thickness);
+    std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g; spectral model, %s\n", surface.source.c_str(), g.nx,
+                g.ny, g.dx, g.rms_slope, half_space ? "half-space" : "layer with its far face fixed");
+    if (!half_space) std::printf("  layer thickness %.4g m\n", g.thickness);
     print_step_header();
-  }
+  };
   int k = 0;
-  const SpectralTestResult r = run_spectral_contact_test(s.map, o, [&](const ContactStep& st) {
+  hooks.on_step = [&](const ContactStep& st) {
     if (talk) print_step_row(++k, st);
-  });
+  };
+  const SceneResult run = run_contact_scene(surface.map, scene, MPI_COMM_SELF, hooks);
+  const SpectralTestResult& r = *run.spectral;
+  const SpectralTestOptions& o = *run.spectral_options;
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& st : r.steps) steps.push_back(contact_step_json(st));
   Provenance prov;
@@ -290,14 +291,16 @@ int run_contact(ContactCli c) {
   if (!(sc.uz > 0)) throw InputError("--uz", "the normal displacement must be > 0 m");
   const ContactScene scene = scene_of(c, ContactModel::fem);
   if (scene.shear && scene.ux == 0) throw InputError("--ux", "the shear test needs a tangential displacement");
+  // On a wet obstacle the penetration limit is the ground's, as in the sweeps.
+  const std::optional<LoadedSurface> ground = c.wet.empty() ? std::nullopt : std::optional(load_surface(c.surface));
   SceneRunHooks hooks;
   hooks.face_maps = !c.out.empty();
   hooks.progress_every_s = c.quiet ? 0 : 10;
   hooks.trace = c.trace;
   hooks.vtu_path = vtu_stage;
-  // On a wet obstacle the penetration limit is the ground's, as in the sweeps.
-  const ContactTestOptions opt =
-      fem_test_options(scene, s.map, c.wet.empty() ? s.map : load_surface(c.surface).map, PETSC_COMM_WORLD, hooks);
+  hooks.ground = ground ? &ground->map : nullptr;
+  // Every option checked before PETSc starts (comm MPI_COMM_NULL: PETSC_COMM_WORLD at run time).
+  fem_test_options(scene, s.map, ground ? ground->map : s.map, MPI_COMM_NULL, hooks);
 
   int argc = 1;
   char name[] = "wetroad";
@@ -311,23 +314,27 @@ int run_contact(ContactCli c) {
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   const bool talk = rank == 0 && !c.quiet;
   if (rank == 0) warn_if_invalid(model, validity.checks);
-  if (talk)
-    std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g (triangulated); block %s, refine %d\n",
-                s.source.c_str(), s.map.nx, s.map.ny, s.map.dx, opt.rms_slope,
-                opt.height > 0 ? "custom height" : "cube", opt.refine);
-  if (talk) print_step_header();
+  hooks.on_setup = [&](const SceneSetup& g) {
+    if (!talk) return;
+    std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g (triangulated); block %s, refine %d\n", s.source.c_str(),
+                g.nx, g.ny, g.dx, g.rms_slope, scene.height > 0 ? "custom height" : "cube", scene.refine);
+    print_step_header();
+  };
   int k = 0;
-  const ContactTestResult r = [&] {
+  hooks.on_step = [&](const ContactStep& st) {
+    ++k;
+    if (talk) print_step_row(k, st);
+  };
+  const SceneResult run = [&] {
     try {
-      return run_contact_test(s.map, opt, [&](const ContactStep& st) {
-        ++k;
-        if (talk) print_step_row(k, st);
-      });
+      return run_contact_scene(s.map, scene, MPI_COMM_NULL, hooks);
     } catch (const PetscFailure& e) {
       if (!c.petsc.empty() && e.bad_option()) throw InputError("--petsc \"" + c.petsc + "\"", e.what());
       throw;
     }
   }();
+  const ContactTestResult& r = *run.fem;
+  const ContactTestOptions& opt = *run.fem_options;
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& st : r.steps) steps.push_back(contact_step_json(st));
   if (opt.shear && opt.follow_geometry) {  // known only now: did the friction settle?

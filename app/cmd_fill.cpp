@@ -57,11 +57,10 @@ int run_fill(const FillCli& c) {
   const std::string out_path = outputs.add("--output", c.output), json_path = outputs.add("--json", c.json);
   PhaseTimer timer;
   timer.start("read");
-  LoadedSurface s = load_surface(c.input);
+  // The input's own levels: the wet surface is written at them (nothing removed and restored).
+  LoadedSurface s = load_surface(c.input, {}, Levels::keep);
   require_periodic_map(s, "the water module drains periodic tiles");
   print_load_warnings(s);  // also under -q: they are about the data
-  // Back to the input's own levels (only the mean was removed from a periodic map).
-  for (double& v : s.map.h) v += s.offset;
   timer.start("fill");
   FillResult r = fill_water(s.map, req);
   timer.stop();

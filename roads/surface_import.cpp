@@ -273,7 +273,7 @@ std::size_t fill_dropouts(HeightMap& m) {
   return missing;
 }
 
-MeanPlane remove_mean_plane(HeightMap& m, const std::vector<unsigned char>& dropout) {
+MeanPlane fit_mean_plane(const HeightMap& m, const std::vector<unsigned char>& dropout) {
   // Centred coordinates decouple the offset from the slopes; solve the 3x3 normal equations.
   const double cx = 0.5 * (m.nx - 1), cy = 0.5 * (m.ny - 1);
   double sxx = 0, syy = 0, sxy = 0, sx = 0, sy = 0, n = 0, sz = 0, sxz = 0, syz = 0;
@@ -308,8 +308,13 @@ MeanPlane remove_mean_plane(HeightMap& m, const std::vector<unsigned char>& drop
       for (int k = c; k < 4; ++k) A[r][k] -= f * A[c][k];
     }
   }
-  MeanPlane p{A[0][0] != 0 ? A[0][3] / A[0][0] : 0, dim >= 2 && A[1][1] != 0 ? A[1][3] / A[1][1] : 0,
-              dim == 3 && A[2][2] != 0 ? A[2][3] / A[2][2] : 0};
+  return {A[0][0] != 0 ? A[0][3] / A[0][0] : 0, dim >= 2 && A[1][1] != 0 ? A[1][3] / A[1][1] : 0,
+          dim == 3 && A[2][2] != 0 ? A[2][3] / A[2][2] : 0};
+}
+
+MeanPlane remove_mean_plane(HeightMap& m, const std::vector<unsigned char>& dropout) {
+  const MeanPlane p = fit_mean_plane(m, dropout);
+  const double cx = 0.5 * (m.nx - 1), cy = 0.5 * (m.ny - 1);
   for (std::size_t iy = 0; iy < m.ny; ++iy)
     for (std::size_t ix = 0; ix < m.nx; ++ix)
       m(ix, iy) -= p.offset + p.tilt_x * (ix - cx) * m.dx + p.tilt_y * (iy - cy) * m.dy;
@@ -335,7 +340,7 @@ std::vector<std::string> check_plausible(const LoadedSurface& s) {
     warnings.push_back(num(100 * share) + " % of the samples are dropouts, filled by interpolation: the statistics "
                        "rest on the remaining " + num(100 * (1 - share)) + " %");
   double peak = 0;
-  for (double v : s.map.h) peak = std::max(peak, std::abs(v));
+  for (double v : s.map.h) peak = std::max(peak, std::abs(v - s.kept_offset));
   if (!(peak <= kMaxHeight))
     throw InputError(s.source, "heights up to " + num(peak) + " m about the mean plane: not a road texture "
                                "(a unit other than metres? set the 'unit' attribute or --unit)");
@@ -347,7 +352,7 @@ std::vector<std::string> check_plausible(const LoadedSurface& s) {
 
 }  // namespace
 
-LoadedSurface load_surface(const std::string& path, const TextGridOptions& text) {
+LoadedSurface load_surface(const std::string& path, const TextGridOptions& text, Levels levels) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a file");
@@ -368,8 +373,10 @@ LoadedSurface load_surface(const std::string& path, const TextGridOptions& text)
   s.dropouts = static_cast<std::size_t>(std::count(s.dropout.begin(), s.dropout.end(), 1));
   if (s.dropouts == m.h.size()) throw InputError(path, "every sample is a dropout (NaN); nothing to analyze");
   fill_dropouts(m);
-  const MeanPlane p = remove_mean_plane(m, s.dropout);
+  const bool keep = levels == Levels::keep && m.periodic;
+  const MeanPlane p = keep ? fit_mean_plane(m, s.dropout) : remove_mean_plane(m, s.dropout);
   s.offset = p.offset;
+  s.kept_offset = keep ? p.offset : 0;
   s.tilt_x = p.tilt_x;
   s.tilt_y = p.tilt_y;
   s.warnings = check_plausible(s);

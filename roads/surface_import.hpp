@@ -37,7 +37,8 @@ struct LoadedSurface {
   std::vector<unsigned char> dropout;  // 1 where the input had no valid sample
   std::size_t dropouts = 0;
   double tilt_x = 0, tilt_y = 0;       // removed mean-plane slopes, m/m
-  double offset = 0;                   // removed mean level, m
+  double offset = 0;                   // mean level (removed unless Levels::keep), m
+  double kept_offset = 0;              // the part of `offset` still in the map (Levels::keep), m
   std::string source;                  // file path
   std::string format;                  // "hdf5" or "text"
   std::optional<SynthesisRecord> synthesis;
@@ -50,7 +51,14 @@ struct LoadedSurface {
 // file when `s` is a 1-D profile or not periodic (`why` says what needs it).
 void require_periodic_map(const LoadedSurface& s, const std::string& why);
 
-LoadedSurface load_surface(const std::string& path, const TextGridOptions& text = {});
+// What the loader does with the mean level of a periodic map: remove it (analysis and contact
+// work about the mean plane), or keep the file's own levels (the water module writes the wet
+// surface at the input's levels, so that nothing is removed, restored and removed again). A
+// map that is not periodic always loses its mean plane (tilt included).
+enum class Levels { remove_mean, keep };
+
+LoadedSurface load_surface(const std::string& path, const TextGridOptions& text = {},
+                           Levels levels = Levels::remove_mean);
 
 // Fills dropouts of `map` in place by the rule above; returns how many were filled.
 std::size_t fill_dropouts(HeightMap& map);
@@ -61,6 +69,8 @@ struct MeanPlane {
   double offset, tilt_x, tilt_y;
 };
 MeanPlane remove_mean_plane(HeightMap& map, const std::vector<unsigned char>& dropout);
+// The same plane, fitted but not removed.
+MeanPlane fit_mean_plane(const HeightMap& map, const std::vector<unsigned char>& dropout);
 
 // Metres per unit for a unit name ("m", "mm", "um", "µm", "nm"); throws InputError.
 double unit_scale(const std::string& unit, const std::string& source);

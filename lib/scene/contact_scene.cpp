@@ -93,33 +93,43 @@ void summarise(SceneResult& r) {
   if (r.failed && r.message.empty()) r.message = "contact run failed";
 }
 
-SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
-  const ContactTestResult t = run_contact_test(obstacle, fem_test_options(s, obstacle, obstacle, comm));
+SceneResult run_fem(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm, const SceneRunHooks& hooks) {
+  const ContactTestOptions o = fem_test_options(s, obstacle, hooks.ground ? *hooks.ground : obstacle, comm, hooks);
+  if (hooks.on_setup) hooks.on_setup({obstacle.nx, obstacle.ny, obstacle.dx, o.rms_slope, 0.0});
+  ContactTestResult t = run_contact_test(obstacle, o, hooks.on_step);
   SceneResult r;
   r.model = "fem";
   r.steps = t.steps;
   r.failed = t.failed;
   r.unknowns = t.nodes;
   r.wall_s = t.wall_s;
+  r.fem = std::move(t);
+  r.fem_options = o;
   return r;
 }
 
-SceneResult run_spectral(const HeightMap& obstacle, const ContactScene& s) {
+SceneResult run_spectral(const HeightMap& obstacle, const ContactScene& s, const SceneRunHooks& hooks) {
   const HeightMap m = spectral_lattice(obstacle, s.refine);
-  const SpectralTestOptions o = spectral_test_options(s, m);
-  const SpectralTestResult t = run_spectral_contact_test(m, o);
+  SpectralTestOptions o = spectral_test_options(s, m);
+  o.face_maps = hooks.face_maps;
+  if (hooks.on_setup)
+    hooks.on_setup({m.nx, m.ny, m.dx, o.rms_slope, o.body.half_space() ? std::numeric_limits<double>::infinity() : o.body.thickness});
+  SpectralTestResult t = run_spectral_contact_test(m, o, hooks.on_step);
   SceneResult r;
   r.model = "spectral";
   r.steps = t.steps;
   r.failed = t.failed;
   r.unknowns = t.nx * t.ny;
   r.wall_s = t.wall_s;
+  r.spectral = std::move(t);
+  r.spectral_options = o;
   return r;
 }
 
 }  // namespace
 
-SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
+SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm,
+                              const SceneRunHooks& hooks) {
   check_contact_scene(s);
   if (s.model == ContactModel::analytic) throw InputError("--model", "the analytic model has no contact scene to run");
   ContactRequest req;
@@ -128,7 +138,7 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   req.rms_slope = rms_slope_finite_difference(obstacle, 1);
   req.e_star = s.young / (1 - s.poisson * s.poisson);
   auto checks = validity_checks(s.model, req);
-  SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, comm) : run_spectral(obstacle, s);
+  SceneResult r = s.model == ContactModel::fem ? run_fem(obstacle, s, comm, hooks) : run_spectral(obstacle, s, hooks);
   if (s.model == ContactModel::fem && s.shear) {
     checks.push_back(friction_convergence_check(r.steps));
     checks.push_back(friction_peak_check(r.steps));

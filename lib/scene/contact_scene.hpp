@@ -8,6 +8,7 @@
 #include <mpi.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,9 +64,19 @@ struct ContactScene {
   AmgHierarchy amg = AmgHierarchy::automatic;
 };
 
+// The grid a model runs on, known once it is set up (for a caller that prints it first).
+struct SceneSetup {
+  std::size_t nx = 0, ny = 0;  // obstacle (fem) or spectral lattice points
+  double dx = 0;               // m
+  double rms_slope = 0;        // of the obstacle as the model sees it
+  double thickness = 0;        // m, spectral layer; +inf: half-space; 0: fem
+};
+
 // What a run of a scene needs beyond the scene itself: where its results go while it runs.
 struct SceneRunHooks {
+  std::function<void(const SceneSetup&)> on_setup;  // before the first step (may be empty)
   std::function<void(const ContactStep&)> on_step;  // after every step (may be empty)
+  const HeightMap* ground = nullptr;  // fem: the dry surface under a wet obstacle (penetration limit)
   bool face_maps = false;         // keep the contact-face maps of every step
   std::string vtu_path;           // fem: write the deformed block of the last step
   double progress_every_s = 0;    // fem: a progress line at most this often within a step
@@ -83,6 +94,12 @@ struct SceneResult {
   // Convenience: the static friction (peak mu of the converged shear steps, NaN without one)
   // and the contact-area fraction at the peak and at the end of the normal load.
   double mu_peak = 0, ux_peak = 0, area_at_peak = 0, area_normal = 0, fz_normal = 0;
+  // The model's own record (mesh, timings, grid) for a caller that reports it in full.
+  std::optional<ContactTestResult> fem;
+  std::optional<SpectralTestResult> spectral;
+  // The model's options the scene was run with.
+  std::optional<ContactTestOptions> fem_options;
+  std::optional<SpectralTestOptions> spectral_options;
 };
 
 // Every scene option at once, before any work: the one validator that `contact` and the sweeps
@@ -92,7 +109,8 @@ void check_contact_scene(const ContactScene& s);
 
 // `obstacle` periodic, no NaN. A step that does not converge ends the run: failed, with the
 // finished steps kept.
-SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
+SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm,
+                              const SceneRunHooks& hooks = {});
 // The same, for runs among many (sweeps): an exception becomes a failed result with its message.
 SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
 
@@ -115,7 +133,8 @@ HeightMap spectral_lattice(const HeightMap& obstacle, int refine);
 // The FEM's options for the scene on `obstacle` (periodic): the one mapping from a scene to the
 // block's run, used by the scene's runs and by `contact`. The penetration limit's default (0)
 // is 0.1 x the rms height of `ground` (the dry surface, also under a wet obstacle); negative
-// switches the check off. Throws InputError as check_fem_options.
+// switches the check off. `comm` MPI_COMM_NULL: PETSC_COMM_WORLD when the block is built.
+// Throws InputError as check_fem_options.
 ContactTestOptions fem_test_options(const ContactScene& s, const HeightMap& obstacle, const HeightMap& ground,
                                     MPI_Comm comm, const SceneRunHooks& hooks = {});
 
