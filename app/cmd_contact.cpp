@@ -161,12 +161,13 @@ int run_spectral(const ContactCli& c, const LoadedSurface& surface, const Validi
   if (sc.refine < 1 || sc.refine > 16) throw InputError("--refine", "must be 1 ... 16");
   ContactScene scene = scene_of(c, ContactModel::spectral);
   scene.planning = FftPlanning::measure;  // one run: the machine's fastest plans
-  warn_if_invalid(validity.model, validity.checks);
   const bool talk = !c.quiet;
   SceneRunHooks hooks;
   hooks.face_maps = !c.out.empty();
-  // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle.
+  // The face lattice of the FEM (obstacle spacing / refine) on the same triangulated obstacle;
+  // called once the model's options passed their checks.
   hooks.on_setup = [&](const SceneSetup& g) {
+    warn_if_invalid(validity.model, validity.checks);
     if (!talk) return;
     const bool half_space = std::isinf(g.thickness);
     std::printf("%s: %zux%zu obstacle, dx %.4g m, rms slope %.4g; spectral model, %s\n", surface.source.c_str(), g.nx,
