@@ -95,6 +95,15 @@ void warn_if_invalid(ContactModel m, const std::vector<ValidityCheck>& checks) {
                    v.detail.c_str());
 }
 
+// The contact scene the options describe, for `model`: what check_contact_scene validates for
+// every model, and what the models run.
+ContactScene scene_of(const ContactCli& c, ContactModel model) {
+  ContactScene scene = c.sc.scene;
+  scene.model = model;
+  scene.shear = c.problem == "shear";
+  return scene;
+}
+
 // The analytic model: Persson's contact area (erf form, eq. 3.162 / 5.3) at each mean pressure.
 int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactRequest& req, const Validity& validity,
                  OutputSet& outputs) {
@@ -104,7 +113,6 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
   warn_if_invalid(validity.model, validity.checks);
   const auto t0 = std::chrono::steady_clock::now();
   const double a0 = s.map.lx() * s.map.ly();
-  std::vector<ContactStep> steps;
   const bool talk = !c.quiet;
   if (talk) {
     std::printf("%s: %zux%zu obstacle, rms slope %.4g; analytic model (Persson, erf form; BGT slope %.3f beside it)\n",
@@ -112,17 +120,10 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
     print_step_header();
   }
   nlohmann::json rows = nlohmann::json::array();
-  for (int k = 1; k <= sc.normal_steps; ++k) {
-    ContactStep st;
-    const double p = sc.pressure * double(k) / sc.normal_steps;
-    st.sigma_star = p / (req.e_star * req.rms_slope);
-    st.area_fraction = persson_area_fraction(st.sigma_star);
-    st.contact_area = st.area_fraction * a0;
-    st.fz = p * a0;
-    st.separation = std::numeric_limits<double>::quiet_NaN();  // not part of these theories here
-    st.converged = true;
-    steps.push_back(st);
-    if (talk) print_step_row(k, st);
+  const std::vector<ContactStep> steps = analytic_normal_curve(scene_of(c, ContactModel::analytic), req.rms_slope, a0);
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const ContactStep& st = steps[k];
+    if (talk) print_step_row(int(k) + 1, st);
     nlohmann::json row = contact_step_json(st);
     row["area_fraction_bgt"] = kappa_bgt() * st.sigma_star;
     rows.push_back(row);
@@ -144,15 +145,6 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
   if (!c.json.empty()) write_text_atomically(c.json_stage, j.dump(2) + "\n");
   outputs.commit();
   return 0;
-}
-
-// The contact scene the options describe, for `model`: what check_contact_scene validates for
-// every model, and what the models run.
-ContactScene scene_of(const ContactCli& c, ContactModel model) {
-  ContactScene scene = c.sc.scene;
-  scene.model = model;
-  scene.shear = c.problem == "shear";
-  return scene;
 }
 
 // The spectral model (lib/spectral/): a periodic layer (or half-space) instead of the block.

@@ -6,51 +6,24 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "lib/analytic/area_load_fit.hpp"
+#include "lib/contact/area_load_fits.hpp"
 #include "roads/height_stats.hpp"
 
 namespace wr::app {
 
-// The area-load fits over the converged normal steps: the low-pressure kappa (sec. 5.2.3) from
-// any of them, the quartic (eq. 5.4) and YAM (eq. 3.179, with the quartic's kappa) from four or
-// more; null without a converged normal step. `central_ratio` > 0 (central- over forward-difference
-// rms slope of the obstacle) adds the low-pressure kappa with sigma* normalised by the central
-// slope: kappa scales with the slope that divides sigma*, and thesis-era codes took gradient().
+// The area-load fits (lib/contact/area_load_fits) as JSON, printed when `talk`.
 nlohmann::json area_load_fit_json(const std::vector<ContactStep>& steps, bool talk, double central_ratio) {
-  std::vector<double> s, a;
-  for (const auto& st : steps)
-    if (st.converged && st.ux == 0 && st.sigma_star > 0) {
-      s.push_back(st.sigma_star);
-      a.push_back(st.area_fraction);
-    }
-  if (s.empty()) return nullptr;
-  // The low-pressure regression of sec. 5.2.3 needs no minimum: any step below 15 % counts.
-  const LowPressureKappa lp = fit_low_pressure_kappa(s, a);
-  nlohmann::json low = {{"kappa", lp.kappa}, {"points", lp.points}, {"max_area_fraction", lp.max_area}};
-  if (central_ratio > 0) low["kappa_central_slope"] = lp.kappa * central_ratio;
-  if (talk && lp.points > 0) {
-    std::printf("  low-pressure kappa (sec. 5.2.3, A/A0 <= %.2f, %zu step%s): %.4f", lp.max_area, lp.points,
-                lp.points == 1 ? "" : "s", lp.kappa);
-    if (central_ratio > 0) std::printf(" (%.4f with sigma* over the central-difference slope)", lp.kappa * central_ratio);
+  const AreaLoadFits f = area_load_fits(steps);
+  if (talk && f.any && f.low.points > 0) {
+    std::printf("  low-pressure kappa (sec. 5.2.3, A/A0 <= %.2f, %zu step%s): %.4f", f.low.max_area, f.low.points,
+                f.low.points == 1 ? "" : "s", f.low.kappa);
+    if (central_ratio > 0) std::printf(" (%.4f with sigma* over the central-difference slope)", f.low.kappa * central_ratio);
     std::printf("\n");
   }
-  if (s.size() < 4) return nlohmann::json{{"low_pressure", low}};
-  try {
-    const QuarticAreaFit q = fit_quartic_area(s, a);
-    nlohmann::json j = {{"quartic", {{"Pi", q.pi}, {"Omega", q.omega}, {"Lambda", q.lambda}, {"kappa", q.kappa},
-                                     {"r2", q.r2}, {"eps_1e4", 1e4 * (1 - q.r2)}}},
-                        {"low_pressure", low}};
-    if (q.kappa > 0) {
-      const YamFit y = fit_yam(s, a, q.kappa);
-      j["yam"] = {{"kappa", y.kappa}, {"beta", y.beta}, {"mu", y.mu}, {"rms_error", y.rms_error}};
-    }
-    if (talk)
-      std::printf("  area-load fit (eq. 5.4): kappa %.4f, Lambda %.4g, Omega %.4g, Pi %.4g, 1 - R^2 = %.2e\n", q.kappa,
-                  q.lambda, q.omega, q.pi, 1 - q.r2);
-    return j;
-  } catch (const std::invalid_argument&) {
-    return nlohmann::json{{"low_pressure", low}};
-  }
+  if (talk && f.quartic)
+    std::printf("  area-load fit (eq. 5.4): kappa %.4f, Lambda %.4g, Omega %.4g, Pi %.4g, 1 - R^2 = %.2e\n", f.quartic->kappa,
+                f.quartic->lambda, f.quartic->omega, f.quartic->pi, 1 - f.quartic->r2);
+  return area_load_fits_json(f, central_ratio);
 }
 
 // The curve's summaries in the JSON: the shear test's peak (static friction) and the area-load

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lib/analytic/contact_theory.hpp"
 #include "lib/contact/friction_convergence.hpp"
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/core/errors.hpp"
@@ -159,6 +160,23 @@ SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactSce
     r.mu_peak = std::numeric_limits<double>::quiet_NaN();
     return r;
   }
+}
+
+std::vector<ContactStep> analytic_normal_curve(const ContactScene& s, double rms_slope, double area) {
+  const double e_star = s.young / (1 - s.poisson * s.poisson);
+  std::vector<ContactStep> steps;
+  for (int k = 1; k <= s.normal_steps; ++k) {
+    ContactStep st;
+    const double p = s.pressure * double(k) / s.normal_steps;
+    st.sigma_star = p / (e_star * rms_slope);
+    st.area_fraction = persson_area_fraction(st.sigma_star);
+    st.contact_area = st.area_fraction * area;
+    st.fz = p * area;
+    st.separation = std::numeric_limits<double>::quiet_NaN();
+    st.converged = true;
+    steps.push_back(st);
+  }
+  return steps;
 }
 
 nlohmann::json scene_result_json(const SceneResult& r) {

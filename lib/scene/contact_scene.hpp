@@ -114,6 +114,11 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
 // The same, for runs among many (sweeps): an exception becomes a failed result with its message.
 SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
 
+// The analytic model's normal curve: Persson's contact area (erf form, eq. 3.162 / 5.3) at each
+// of the scene's normal_steps mean pressures up to s.pressure (> 0, Pa), for an obstacle of rms
+// slope `rms_slope` and projected area `area` (m^2). No separation (not part of the theory: NaN).
+std::vector<ContactStep> analytic_normal_curve(const ContactScene& s, double rms_slope, double area);
+
 // The run as sweeps record it: {model, mu_peak (null without a peak), ux_peak, area_at_peak,
 // area_normal, fz_normal, failed, message, unknowns, steps [contact_step_json, the layout of
 // `contact --json`], validity}.

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <map>
 
-#include "lib/analytic/area_load_fit.hpp"
+#include "lib/contact/area_load_fits.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/sweep/hysteresis_run.hpp"
 #include "lib/sweep/sample_statistics.hpp"
@@ -146,22 +146,11 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
   ContactScene scene = s.scene;
   scene.threads = threads;
   const SceneResult c = run_contact_scene_caught(m, scene, comm);
-  std::vector<double> sig, area;  // the normal curve: converged steps before the shear
-  for (const auto& st : c.steps)
-    if (st.ux == 0 && st.converged && st.sigma_star > 0) {
-      sig.push_back(st.sigma_star);
-      area.push_back(st.area_fraction);
-    }
+  const NormalCurve curve = normal_curve(c.steps);  // the converged steps before the shear
   rec["contact"] = scene_result_json(c);
-  rec["normal_curve"] = {{"sigma_star", sig}, {"area", area}};
-  rec["quartic"] = nullptr;
-  if (sig.size() >= 4) {
-    try {
-      const QuarticAreaFit q = fit_quartic_area(sig, area);
-      rec["quartic"] = {{"Pi", q.pi}, {"Omega", q.omega}, {"Lambda", q.lambda}, {"kappa", q.kappa}, {"r2", q.r2}};
-    } catch (const std::invalid_argument&) {
-    }
-  }
+  rec["normal_curve"] = {{"sigma_star", curve.sigma_star}, {"area", curve.area}};
+  const AreaLoadFits fits = area_load_fits(c.steps);
+  rec["quartic"] = fits.quartic ? quartic_json(*fits.quartic) : nlohmann::json(nullptr);
   const bool ok = !c.failed && std::isfinite(c.mu_peak);
   rec["status"] = ok ? "ok" : "failed";
   rec["message"] = ok ? "" : "contact: " + c.message;
