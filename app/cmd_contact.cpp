@@ -339,13 +339,13 @@ int run_contact(ContactCli c) {
   Provenance prov;
   prov.command = "contact";
   prov.inputs = {{"surface", c.surface}, {"wet", c.wet}};
-  prov.parameters = {{"problem", c.problem}, {"uz", opt.uz}, {"ux", opt.ux}, {"steps", opt.normal_steps}, {"shear_steps", opt.shear_steps},
-                     {"refine", opt.refine}, {"E", opt.young}, {"nu", opt.poisson},
-                     {"layers_per_level", opt.layers_per_level}, {"max_coarsenings", opt.max_coarsenings},
-                     {"damping", opt.damping}, {"extrapolate_every", opt.extrapolate_every}, {"face_modes", opt.face_modes}, {"coarse_start", opt.coarse_refine}, {"tolerance", opt.tolerance}, {"ksp_rtol", opt.ksp_rtol}, {"max_penetration", opt.max_penetration}, {"cutbacks", opt.max_cutbacks}, {"predictor", secant_predictor_name(opt.secant_predictor)},
-                     {"follow_geometry", opt.follow_geometry}, {"amg", c.sc.amg}, {"petsc", c.petsc},
-                     {"facet_normals", opt.facet_normals}, {"facet_band", opt.facet_band},
-                     {"block_normals", opt.block_normals}};
+  // The scene as the sweeps record it, with what the run resolved (the penetration limit in m,
+  // the AMG hierarchy asked for) and the PETSc options.
+  prov.parameters = contact_scene_json(scene);
+  prov.parameters["problem"] = c.problem;
+  prov.parameters["max_penetration"] = opt.max_penetration;
+  prov.parameters["amg"] = c.sc.amg;
+  prov.parameters["petsc"] = c.petsc;
   prov.model = std::string("fem: trilinear bricks graded in depth and in-plane (hanging nodes constrained), iterative "
                            "Signorini (thesis Alg. 1), PDAS + CG/GAMG; constraint normal: ") +
                (opt.block_normals > 0 ? "the block's face normal (experimental, not a rigid obstacle's force)"
