@@ -312,3 +312,13 @@ TEST_F(Robust, SceneOptionsReachEveryCommandThatRunsAScene) {
   EXPECT_EQ(r["spec"]["scene"]["layers_per_level"], 3);
   EXPECT_EQ(r["runs"][0]["contact"]["unknowns"].get<std::size_t>(), nodes[1]);  // same 16 x 16 grid
 }
+
+// The flash temperature needs the compound's thermal data: refused before any work without it.
+TEST_F(Robust, FlashTemperatureNeedsThermalData) {
+  std::ofstream(path("cold.json")) << R"({"name": "no thermal", "source": "test", "reference_temperature_c": 20,
+    "wlf": {"c1": 8.86, "c2_k": 101.6}, "poisson": 0.5,
+    "prony": {"e_relaxed_pa": 3e6, "terms": [{"tau_s": 1e-6, "de_pa": 1e8}]}})";
+  expect_refused("friction " + path("a.h5") + " --flash-temperature --compound " + path("cold.json") + " --json " +
+                     path("f.json"),
+                 "--flash-temperature: the compound \"no thermal\" has no \"thermal\" block");
+}

@@ -75,6 +75,9 @@ void check_friction_scene(const FrictionScene& s) {
   for (double v : s.speeds)
     if (!(v > 0 && std::isfinite(v))) throw InputError("--speeds", "a sliding speed must be positive (m/s), got " + number_text(v));
   check_friction_options(s.options, s.compound);
+  if (s.options.flash_temperature && !s.compound.thermal)
+    throw InputError("--flash-temperature", "the compound \"" + s.compound.name +
+                                                "\" has no \"thermal\" block (density, specific heat, conductivity)");
   if (s.q1 && !(*s.q1 > 0 && std::isfinite(*s.q1))) throw InputError("--q1", "must be a positive wavenumber in 1/m");
 }
 

@@ -76,7 +76,8 @@ struct FrictionRun {
   PhaseTimer timer;
 };
 
-// InputError naming the option: no speeds, a speed <= 0, the options of check_friction_options.
+// InputError naming the option: no speeds, a speed <= 0, the options of check_friction_options,
+// the flash temperature asked of a compound without thermal data.
 void check_friction_scene(const FrictionScene& s);
 // The built-in default compound (share/compounds/synthetic-tread.json).
 std::string default_compound_path();
