@@ -148,7 +148,7 @@ int run_friction_command(const FrictionCli& c) {
   if (r.dry_spectrum.q_measured > 0) {
     std::vector<double> q1s;
     for (int k = 0; k <= 8; ++k) q1s.push_back(r.dry_spectrum.q_measured * std::pow(10.0, k / 4.0));
-    q1_scan = mu_against_q1(dry.map, s, kLockedWheelSpeed, q1s, c.input);
+    q1_scan = mu_against_q1(r, s, kLockedWheelSpeed, q1s, c.input);
   }
 
   Provenance prov;

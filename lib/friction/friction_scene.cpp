@@ -37,15 +37,6 @@ FrictionCurve curve(const std::string& surface, const RoughnessSpectrum& psd, co
   return c;
 }
 
-RoughnessSpectrum spectrum_of(const HeightMap& map, std::optional<double> q1, int threads, const std::string& source,
-                              PsdFit* fit_out, double* nyquist_out) {
-  const SpectrumResult sp = analyze_spectrum(map, threads);
-  const PsdFit fit = fit_self_affine(sp.psd, sp.nyquist, map.is_profile());
-  if (fit_out) *fit_out = fit;
-  if (nyquist_out) *nyquist_out = sp.nyquist;
-  return spectrum_from_psd(sp.psd, sp.nyquist, fit, q1, source);
-}
-
 std::vector<ValidityCheck> scene_checks(const FrictionRun& r, const FrictionScene& s) {
   std::vector<ValidityCheck> checks;
   const double ratio = s.options.pressure / s.compound.e_relaxed;
@@ -87,7 +78,11 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
   if (dry.is_profile()) throw InputError(source, "the hysteresis model needs a 2-D map (an isotropic PSD), not a profile");
   FrictionRun r;
   r.timer.start("spectrum");
-  r.dry_spectrum = spectrum_of(dry, s.q1, s.options.threads, source, &r.fit, &r.nyquist);
+  SpectrumResult sp = analyze_spectrum(dry, s.options.threads);
+  r.measured = std::move(sp.psd);
+  r.nyquist = sp.nyquist;
+  r.fit = fit_self_affine(r.measured, r.nyquist, false);
+  r.dry_spectrum = spectrum_from_psd(r.measured, r.nyquist, r.fit, s.q1, source);
   r.timer.start("dry mu(v)");
   r.dry = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
   if (wet) {
@@ -111,16 +106,11 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
   return r;
 }
 
-std::vector<std::pair<double, double>> mu_against_q1(const HeightMap& dry, const FrictionScene& s, double speed,
+std::vector<std::pair<double, double>> mu_against_q1(const FrictionRun& r, const FrictionScene& s, double speed,
                                                      const std::vector<double>& q1s, const std::string& source) {
   std::vector<std::pair<double, double>> out;
-  PsdFit fit;
-  double nyquist = 0;
-  const SpectrumResult sp = analyze_spectrum(dry, s.options.threads);
-  fit = fit_self_affine(sp.psd, sp.nyquist, false);
-  nyquist = sp.nyquist;
   for (double q1 : q1s) {
-    const RoughnessSpectrum psd = spectrum_from_psd(sp.psd, nyquist, fit, q1, source);
+    const RoughnessSpectrum psd = spectrum_from_psd(r.measured, r.nyquist, r.fit, q1, source);
     out.push_back({q1, hysteresis_friction(psd, s.compound, speed, s.options).mu});
   }
   return out;

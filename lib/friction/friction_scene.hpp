@@ -66,9 +66,10 @@ struct WetSurface {
 };
 
 struct FrictionRun {
-  RoughnessSpectrum dry_spectrum;
-  PsdFit fit;
-  double nyquist = 0;
+  RadialPsd measured;       // the dry map's radial PSD
+  PsdFit fit;               // its self-affine fit
+  double nyquist = 0;       // 1/m
+  RoughnessSpectrum dry_spectrum;  // the above, extended to q1
   FrictionCurve dry;
   std::optional<FrictionCurve> wet_homogeneous, wet_local;
   double coverage = 0;
@@ -86,8 +87,9 @@ std::string default_compound_path();
 FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& wet, const FrictionScene& s,
                          const std::string& source);
 
-// mu at `speed` for a list of cut-offs q1 (1/m): how much the unmeasured scales carry.
-std::vector<std::pair<double, double>> mu_against_q1(const HeightMap& dry, const FrictionScene& s, double speed,
+// mu at `speed` for a list of cut-offs q1 (1/m) on the run's measured spectrum: how much the
+// unmeasured scales carry.
+std::vector<std::pair<double, double>> mu_against_q1(const FrictionRun& r, const FrictionScene& s, double speed,
                                                      const std::vector<double>& q1s, const std::string& source);
 
 nlohmann::json friction_curve_json(const FrictionCurve& c);
