@@ -83,6 +83,18 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
                "iterations allowed per step (0: the model's default: fem 300 Signorini iterations; spectral 5000 CG "
                "iterations, or 200 geometry iterations in a shear test)")
       ->capture_default_str();
+  s.add_option("--iteration", sc.iteration,
+               "fem: the geometry iteration of each load step: signorini (the thesis's Algorithm 1: damped fixed point, "
+               "rays on the triangulated obstacle; linear convergence) or newton (Newton's method on the C2 spline "
+               "through the same heights, curvature of the contact included; superlinear once the contact set settles; "
+               "docs/fem-solver.md)")
+      ->transform(CLI::CheckedTransformer(contact_iteration_names(), CLI::ignore_case))
+      ->option_text("signorini|newton (default signorini)");
+  s.add_option("--curvature", sc.curvature,
+               "fem, --iteration newton: scale of the contact constraints' second-order term (1: Newton; 0: without it, "
+               "a linearly converging Gauss-Newton iteration, for comparison)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   s.add_flag("--vertical", c.vertical, "fem: linearise once with vertical normals (small-slope approximation)");
   s.add_flag("--facet-normals", sc.facet_normals,
              "fem: constrain along the hit triangle's normal instead of the smooth vertex-normal blend");

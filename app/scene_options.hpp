@@ -20,7 +20,7 @@ struct SceneCli {
 
 // --uz --ux --steps --shear-steps --refine --height --layers --coarsen --E --nu --damping
 // --extrapolate --face-modes --coarse-start --max-penetration --cutbacks --predictor --ksp-rtol
-// --tol --spectral-tol --max-iterations --vertical --facet-normals --facet-band --block-normals
+// --tol --spectral-tol --max-iterations --iteration --curvature --vertical --facet-normals --facet-band --block-normals
 // --amg --thickness.
 void add_scene_options(CLI::App& app, SceneCli& c);
 // After parsing: the texts (--thickness, --amg, --vertical) into the scene, and a shear phase of

@@ -1,10 +1,13 @@
 // Periodic triangulated obstacle: interpolation, normals, and ray casting against brute force.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "lib/contact/periodic_obstacle.hpp"
+#include "lib/contact/smooth_obstacle.hpp"
 
 namespace wr {
 namespace {
@@ -27,6 +30,52 @@ TEST(Obstacle, InterpolatesLatticeValuesAndIsPeriodic) {
     }
   // Inside a cell the surface is linear on each triangle: the mid-point of the diagonal.
   EXPECT_NEAR(o.height(0.5e-4, 1e-4), 0.5 * (m(0, 0) + m(1, 1)), 1e-18);
+}
+
+// The C2 spline obstacle passes through every lattice height and repeats with the map's periods,
+// values and derivatives alike.
+TEST(SmoothObstacle, InterpolatesLatticeValuesAndIsPeriodic) {
+  const HeightMap m = random_map(7, 5, 1, 1e-4);
+  const SmoothObstacle o(m);
+  for (std::size_t j = 0; j < 5; ++j)
+    for (std::size_t i = 0; i < 7; ++i) EXPECT_NEAR(o.height(i * 1e-4, j * 2e-4), m(i, j), 1e-16);
+  for (double x : {0.13e-4, 3.71e-4}) {
+    const auto a = o.at(x, 1.3e-4), b = o.at(x - 2 * o.lx(), 1.3e-4 + o.ly());
+    EXPECT_NEAR(a.h, b.h, 1e-16);
+    EXPECT_NEAR(a.hx, b.hx, 1e-12);
+    EXPECT_NEAR(a.hyy, b.hyy, 1e-6);
+  }
+  EXPECT_GE(o.max_height(), *std::max_element(m.h.begin(), m.h.end()) - 1e-16);
+}
+
+// On h = A sin(kx x) cos(ky y), 32 and 16 samples per period, the spline and its derivatives
+// against the analytic ones at points between the samples. A cubic spline's error is of order
+// (k dx)^4 in the value, (k dx)^3 in the slope and (k dx)^2 in the curvature, relative to the
+// amplitude of each: here (2 pi / 32)^2 = 4 % for the curvature; the bars sit above the
+// measured errors (6.4e-5, 3.8e-4, 6.1e-3 of the amplitudes, printed) about tenfold.
+TEST(SmoothObstacle, ReproducesASinusoidAndItsDerivatives) {
+  const std::size_t nx = 32, ny = 16;
+  const double dx = 1e-4, dy = 2e-4, A = 3e-5;
+  const double kx = 2 * M_PI / (nx * dx), ky = 2 * M_PI / (ny * dy);
+  HeightMap m(nx, ny, dx, dy);
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) m(i, j) = A * std::sin(kx * i * dx) * std::cos(ky * j * dy);
+  const SmoothObstacle o(m);
+  double e_h = 0, e_g = 0, e_c = 0;
+  for (double x = 0.37 * dx; x < nx * dx; x += 1.13 * dx)
+    for (double y = 0.61 * dy; y < ny * dy; y += 0.87 * dy) {
+      const auto s = o.at(x, y);
+      const double sx = std::sin(kx * x), cx = std::cos(kx * x), sy = std::sin(ky * y), cy = std::cos(ky * y);
+      e_h = std::max(e_h, std::abs(s.h - A * sx * cy) / A);
+      e_g = std::max({e_g, std::abs(s.hx - A * kx * cx * cy) / (A * kx), std::abs(s.hy + A * ky * sx * sy) / (A * kx)});
+      e_c = std::max({e_c, std::abs(s.hxx + A * kx * kx * sx * cy) / (A * kx * kx),
+                      std::abs(s.hxy + A * kx * ky * cx * sy) / (A * kx * kx),
+                      std::abs(s.hyy + A * ky * ky * sx * cy) / (A * kx * kx)});
+    }
+  std::printf("spline errors: value %.2e slope %.2e curvature %.2e\n", e_h, e_g, e_c);
+  EXPECT_LT(e_h, 1e-3);
+  EXPECT_LT(e_g, 4e-3);
+  EXPECT_LT(e_c, 6e-2);
 }
 
 // The banded facet normal is the triangle's own normal away from its edges and the smooth

@@ -61,6 +61,18 @@ const char* secant_predictor_name(SecantPredictor p) {
   return "?";
 }
 
+const std::vector<std::pair<std::string, ContactIteration>>& contact_iteration_names() {
+  static const std::vector<std::pair<std::string, ContactIteration>> names{{"signorini", ContactIteration::signorini},
+                                                                          {"newton", ContactIteration::newton}};
+  return names;
+}
+
+const char* contact_iteration_name(ContactIteration i) {
+  for (const auto& [name, value] : contact_iteration_names())
+    if (value == i) return name.c_str();
+  return "?";
+}
+
 void check_cutbacks(int cutbacks) {
   if (cutbacks < 0 || cutbacks > 8) throw InputError("--cutbacks", "must be 0 ... 8");
 }
@@ -100,6 +112,9 @@ void check_fem_options(const ContactTestOptions& o) {
     throw InputError("--max-iterations", "must be 1 ... " + std::to_string(kMaxIterations));
   if (!(o.block_normals >= 0 && o.block_normals <= 1)) throw InputError("--block-normals", "must lie in [0, 1]");
   if (o.block_normals > 0 && o.facet_normals) throw InputError("--block-normals", "excludes --facet-normals");
+  if (!(o.curvature >= 0 && o.curvature <= 1)) throw InputError("--curvature", "must lie in [0, 1]");
+  if (o.iteration == ContactIteration::newton && (o.facet_normals || o.block_normals > 0))
+    throw InputError("--iteration", "newton constrains along the smooth obstacle's normal: no --facet-normals or --block-normals");
   if (o.max_cutbacks > 0 && o.coarse_refine > 0)
     throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
   if (o.coarse_refine < 0 || (o.coarse_refine > 0 && (o.coarse_refine >= o.refine || o.refine % o.coarse_refine)))
@@ -118,6 +133,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   const double hmax = *std::max_element(shifted.h.begin(), shifted.h.end());
   for (double& v : shifted.h) v -= hmax;
   const PeriodicObstacle ob(shifted);
+  std::unique_ptr<SmoothObstacle> smooth;
+  if (opt.iteration == ContactIteration::newton && opt.follow_geometry) smooth = std::make_unique<SmoothObstacle>(shifted);
 
   auto block_spec = [&](int refine) {
     BlockSpec b;
@@ -176,6 +193,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   load.facet_normals = opt.facet_normals;
   load.facet_band = opt.facet_band;
   load.block_normals = opt.block_normals;
+  load.smooth = smooth.get();
+  load.curvature = opt.curvature;
   res.face_nx = std::size_t(b.mesh.nx + 1);
   res.face_ny = std::size_t(b.mesh.ny + 1);
   std::vector<LoadTarget> plan = load_plan(opt);

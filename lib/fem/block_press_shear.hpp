@@ -16,6 +16,14 @@
 
 namespace wr {
 
+// The geometry iteration of each load step: the thesis's Algorithm 1 (damped fixed point with
+// rays on the triangulated obstacle) or Newton's method on the C2 spline through the same
+// heights (ContactLoad::smooth).
+enum class ContactIteration { signorini, newton };
+// The names the options take ("signorini", "newton"), in that order.
+const std::vector<std::pair<std::string, ContactIteration>>& contact_iteration_names();
+const char* contact_iteration_name(ContactIteration i);
+
 // Which load steps start from the secant prediction (ContactTestOptions::secant_predictor).
 enum class SecantPredictor { off, press, all };
 // The names the options take ("off", "press", "all"), in that order.
@@ -38,6 +46,8 @@ struct ContactTestOptions {
   int max_coarsenings = 16;  // in-plane doublings of the spacing away from the face (0: none)
   double young = 1.0, poisson = 0.45;
   bool follow_geometry = true;
+  ContactIteration iteration = ContactIteration::signorini;
+  double curvature = 1.0;   // Newton: scale of the constraints' second-order term (ContactLoad)
   double damping = 0.8, tolerance = 1e-5;
   int extrapolate_every = 5;  // slow-mode jumps every this many Signorini iterations (0: off)
   bool face_modes = false;    // also jump along the face's rigid in-plane modes (ContactLoad)

@@ -37,6 +37,7 @@ BlockState ElasticBlock::state() const {
   s.u.assign(a, a + n);
   check(VecRestoreArrayRead(m.u, &a), "VecRestoreArrayRead");
   s.active = m.active;
+  s.lambda = m.lambda;
   return s;
 }
 
@@ -51,6 +52,7 @@ void ElasticBlock::restore(const BlockState& s) {
   std::copy(s.u.begin(), s.u.end(), a);
   check(VecRestoreArray(m.u, &a), "VecRestoreArray");
   m.active = s.active;
+  m.lambda = s.lambda;
 }
 
 std::vector<double> ElasticBlock::face_displacement() const {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "lib/contact/periodic_obstacle.hpp"
+#include "lib/contact/smooth_obstacle.hpp"
 #include "lib/fem/amg_hierarchy.hpp"
 #include "lib/fem/graded_mesh.hpp"
 
@@ -49,6 +50,19 @@ struct ContactLoad {
   // The obstacle, shifted so that its highest point touches z = 0; nullptr = flat at z = 0.
   const PeriodicObstacle* obstacle = nullptr;
   bool follow_geometry = true;   // Algorithm 1 (rays, rotated normals); false: one solve, u_z >= h
+  // Set (with follow_geometry): Newton's iteration on this C2 obstacle instead of Algorithm 1 on
+  // the triangulated one (the same surface, shifted alike). Each iteration linearises the
+  // contact condition z + u_z >= h(x + u_x, y + u_y) at the current face: the bound along
+  // N = grad(z - h) / |grad(z - h)| through the point below the node, and, scaled by
+  // `curvature`, its second-order term lambda H_h (lambda the node's contact force per unit
+  // gradient, H_h the obstacle's Hessian) added to the node's stiffness block: a sequential
+  // quadratic programme whose contact set is found by the active-set loop of each iteration, and
+  // which converges superlinearly once that set settles. Full steps (no damping, no slow-mode
+  // jumps); when CG meets an indefinite system the curvature scale is cut (x 0.25) and the
+  // iteration repeated. `obstacle` still names the triangulated surface for the caller's
+  // bookkeeping; gaps and penetration are measured on this one.
+  const SmoothObstacle* smooth = nullptr;
+  double curvature = 1.0;        // scale of the second-order term in [0, 1] (0: Gauss-Newton, linear)
   double damping = 0.8;          // alpha_c
   bool facet_normals = false;     // constraint normal: the hit triangle's (true) or the smooth blend
   double facet_band = 0;          // > 0: facet normals blended into the smooth ones near edges
@@ -100,6 +114,8 @@ struct ContactSolution {
   int linear_iterations = 0;      // CG iterations, summed
   int preconditioner_rebuilds = 0;  // AMG hierarchies rebuilt after a failed solve with a kept one
   int extrapolations = 0;           // slow-mode jumps taken (slow_mode_extrapolation.hpp)
+  int curvature_cuts = 0;           // Newton: cuts of the curvature scale after an indefinite system
+  int clipped_nodes = 0;            // Newton: face nodes whose negative curvature was bounded, last iteration
   int rejected_jumps = 0;           // of them, undone: the contact set collapsed or the next change grew (jump_overshot)
   bool converged = false;
   std::string message;
@@ -115,11 +131,12 @@ struct ContactSolution {
 };
 
 // What solve() carries from one load step to the next, on this rank: its owned displacement
-// dofs (m) and its face nodes' contact set. Why: a failed load step is retried from the last
+// dofs (m), its face nodes' contact set and (Newton) contact multipliers. Why: a failed load step is retried from the last
 // converged one with a shorter increment (ContactTestOptions::max_cutbacks).
 struct BlockState {
   std::vector<double> u;
   std::vector<char> active;
+  std::vector<double> lambda;  // Newton: contact multipliers of the face nodes (N per unit gradient)
 };
 
 // Builds the mesh and the stiffness matrix once; solve() may be called for many loads and

@@ -30,7 +30,7 @@ ElasticBlock::Impl::ActiveSetOutcome ElasticBlock::Impl::solve_active_set(const 
     check(VecSetValues(s.uh, PetscInt(rows.size()), rows.data(), vals.data(), INSERT_VALUES), "VecSetValues");
     check(VecAssemblyBegin(s.uh), "VecAssemblyBegin");
     check(VecAssemblyEnd(s.uh), "VecAssemblyEnd");
-    stiffness->eliminate(rows, control.unit_diag, s.uh, s.b);
+    stiffness->eliminate(rows, control.unit_diag, s.uh, s.b, s.shift);
     check(KSPSetOperators(s.ksp, stiffness->mat(), stiffness->mat()), "KSPSetOperators");
     PetscBool reused = PETSC_FALSE;
     KSPGetReusePreconditioner(s.ksp, &reused);
@@ -69,6 +69,7 @@ ElasticBlock::Impl::ActiveSetOutcome ElasticBlock::Impl::solve_active_set(const 
       return res;
     }
     check(MatMult(stiffness->mat(), s.uh, s.r), "MatMult");  // reactions in the rotated frames
+    if (s.shift) check(VecAXPY(s.r, -1.0, s.shift), "VecAXPY");  // Newton: K u* + C (u* - u)
     const PetscScalar *ra, *ua, *da;
     VecGetArrayRead(s.r, &ra);
     VecGetArrayRead(s.uh, &ua);
@@ -130,13 +131,13 @@ ElasticBlock::Impl::FaceGaps ElasticBlock::Impl::face_gaps(const std::vector<Fac
   FaceGaps out;
   for (const FaceNode& f : face) {
     const Vec3 p{f.x0.x + a[f.row[0] - rstart], f.x0.y + a[f.row[1] - rstart], a[f.row[2] - rstart]};
-    const double h = load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0;
-    out.separation += std::max(0.0, p.z - h);
-    if (h <= p.z) continue;
-    // Penetration as a distance: perpendicular to the facet above the node. The vertical depth
-    // overstates it by sqrt(1 + slope^2), 2.2x on the slope-2 flanks where the last nodes of
-    // the thesis's Problem A sit, and the linearised constraint bounds the normal gap.
-    const double depth = (h - p.z) * (load.obstacle ? load.obstacle->normal(p.x, p.y).z : 1.0);
+    const SurfacePoint sp = surface_at(load, p.x, p.y);
+    out.separation += std::max(0.0, p.z - sp.h);
+    if (sp.h <= p.z) continue;
+    // Penetration as a distance: perpendicular to the surface above the node. The vertical
+    // depth overstates it by sqrt(1 + slope^2), 2.2x on the slope-2 flanks where the last nodes
+    // of the thesis's Problem A sit, and the linearised constraint bounds the normal gap.
+    const double depth = (sp.h - p.z) * sp.nz;
     if (depth > out.deepest) {
       out.deepest = depth;
       out.deepest_at = p;
@@ -194,7 +195,7 @@ void ElasticBlock::Impl::output_results(const std::vector<FaceNode>& face, const
       const double wx = (f.i == 0 || f.i == fnx) ? 0.5 : 1.0, wy = (f.j == 0 || f.j == fny) ? 0.5 : 1.0;
       local[idx] = normal_force[n] / (wx * wy * g.hx(0) * g.hy(0));
       const Vec3 p{f.x0.x + uu[f.row[0] - rstart], f.x0.y + uu[f.row[1] - rstart], uu[f.row[2] - rstart]};
-      local[nf + idx] = p.z - (load.obstacle ? load.obstacle->height(p.x, p.y) : 0.0);
+      local[nf + idx] = p.z - surface_at(load, p.x, p.y).h;
       local[2 * nf + idx] = active[n] ? 1.0 : 0.0;
     }
     std::vector<double> global(3 * nf, 0.0);

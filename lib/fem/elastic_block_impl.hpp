@@ -74,6 +74,7 @@ struct FaceNode {
   Vec3 x0;          // reference position
   Vec3 normal{0, 0, 1};  // obstacle normal N of the current linearisation
   double g = -INFINITY;  // bound on N . u (-inf: no obstacle within reach)
+  double hxx = 0, hxy = 0, hyy = 0;  // Newton: the smooth obstacle's Hessian below the node, 1/m
 };
 
 // The contact face's in-plane rigid modes (FaceModeExtrapolation): slide x, slide y,
@@ -126,6 +127,10 @@ struct ElasticBlock::Impl {
   VecScatter face_scatter = nullptr;
   Vec face_u = nullptr;
   std::vector<char> active;  // per owned face node, carried between solves
+  // Newton: per owned face node, its contact force per unit constraint gradient (N) from the
+  // last active-set solve, carried between solves: the weight of its curvature term.
+  std::vector<double> lambda;
+  std::vector<double> face_stiffness;  // Newton: K's mean diagonal entry per owned face node, N/m
   std::vector<std::int32_t> face_slot;  // per node id: its face index j (nx+1) + i, or -1
 
   PetscInt dof(std::int32_t node, int c) const { return 3 * PetscInt(node) + c; }
@@ -196,6 +201,9 @@ struct ElasticBlock::Impl {
   // (the operator is `stiffness`).
   struct LinearSystems {
     Vec uh = nullptr, b = nullptr, r = nullptr, diag = nullptr, ustar = nullptr;
+    // Newton: R^T C u at the linearisation point (C the curvature blocks): the load that makes
+    // the quadratic model's minimiser the Newton step; null without curvature.
+    Vec shift = nullptr;
     KSP ksp = nullptr;
     Vec before_jump = nullptr;  // the iterate before the last slow-mode jump
     std::vector<double> q_all, q_mine;  // constraint frames, 9 per face slot (all face nodes)
@@ -230,8 +238,21 @@ struct ElasticBlock::Impl {
   // along the deformed face's normal (thesis Fig. 4.6).
   void linearise(std::vector<FaceNode>& face, const ContactLoad& load) const;
   // Step 2: Khat = R^T K R and uh = R^T u in the nodes' constraint frames; returns the
-  // diagonal scale for eliminated rows.
-  double rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s) const;
+  // diagonal scale for eliminated rows. Newton (curvature.on): K + C, C the nodes' curvature
+  // blocks (curvature_block in the .cpp), and s.shift = R^T C u; returns through `clipped` how
+  // many owned nodes had their negative curvature bounded.
+  struct CurvatureScales {
+    bool on = false;        // Newton: blocks are set (all zero when `all` is 0)
+    double all = 1;         // ContactLoad::curvature
+    double negative = 1;    // of the softening part, cut after an indefinite system
+  };
+  double rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s, const CurvatureScales& curvature,
+                            int& clipped);
+  // The obstacle in use at (x, y): its height and the vertical component of its unit normal.
+  struct SurfacePoint {
+    double h = 0, nz = 1;
+  };
+  static SurfacePoint surface_at(const ContactLoad& load, double x, double y);
   // Step 3: primal-dual active set on the bounds uh_z >= g; the solution is left in s.uh, the
   // rotated reactions in s.r, the contact set in `active`. Counts and failures go into `out`.
   ActiveSetOutcome solve_active_set(const std::vector<FaceNode>& face, const TopBoundary& top, LinearSystems& s,

@@ -93,7 +93,7 @@ ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::s
 
 ElasticBlock::Impl::LinearSystems::~LinearSystems() {
   KSPDestroy(&ksp);
-  for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) VecDestroy(v);
+  for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump, &shift}) VecDestroy(v);
 }
 
 void ElasticBlock::Impl::linearise(std::vector<FaceNode>& face, const ContactLoad& load) const {
@@ -108,6 +108,23 @@ void ElasticBlock::Impl::linearise(std::vector<FaceNode>& face, const ContactLoa
     const std::size_t k = 3 * (std::size_t(j) * (fnx + 1) + i);
     return g.position(0, i, j) + Vec3{fu[k], fu[k + 1], fu[k + 2]};
   };
+  if (load.smooth && load.follow_geometry) {
+    // Newton: the contact condition g(x) = z - h(x, y) >= 0 linearised at the node's current
+    // position p: grad g . (x - p) + g(p) >= 0, i.e. N . x >= N . q with N = grad g / |grad g|
+    // and q = (p_x, p_y, h) the point of the obstacle below p. Exact to first order whatever
+    // the slope, so no ray is needed.
+    for (FaceNode& f : face) {
+      const Vec3 p = X(f.i, f.j);
+      const SmoothObstacle::Local o = load.smooth->at(p.x, p.y);
+      f.normal = Vec3{-o.hx, -o.hy, 1.0}.unit();
+      f.g = f.normal.dot(Vec3{p.x, p.y, o.h} - f.x0);
+      f.hxx = o.hxx;
+      f.hxy = o.hxy;
+      f.hyy = o.hyy;
+    }
+    VecRestoreArrayRead(face_u, &fu);
+    return;
+  }
   for (FaceNode& f : face) {
     if (!load.obstacle) {
       f.normal = {0, 0, 1};
@@ -158,8 +175,51 @@ void ElasticBlock::Impl::linearise(std::vector<FaceNode>& face, const ContactLoa
   VecRestoreArrayRead(face_u, &fu);
 }
 
-double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s) const {
+ElasticBlock::Impl::SurfacePoint ElasticBlock::Impl::surface_at(const ContactLoad& load, double x, double y) {
+  SurfacePoint p;
+  if (load.smooth) {
+    const SmoothObstacle::Local o = load.smooth->at(x, y);
+    p.h = o.h;
+    p.nz = 1.0 / std::sqrt(1.0 + o.hx * o.hx + o.hy * o.hy);
+  } else if (load.obstacle) {
+    p.h = load.obstacle->height(x, y);
+    p.nz = load.obstacle->normal(x, y).z;
+  }
+  return p;
+}
+
+namespace {
+
+// A face node's curvature block, global frame, row-major: lambda [[hxx, hxy, 0], [hxy, hyy, 0],
+// [0, 0, 0]], the Hessian of -lambda g for g = z - h(x, y), split by the sign of its
+// eigenvalues. Where the obstacle curves up (a valley) the term stiffens the node's sliding and
+// is kept whole; where it curves down (an asperity's top) it softens it, and a system whose
+// multipliers are still poor estimates (early iterations) can then be indefinite: that part is
+// scaled by `negative` (in [0, 1], cut by the caller after an indefinite system) and bounded
+// below by -kBound x the node's own stiffness `k`. Returns whether the bound acted.
+bool curvature_block(const FaceNode& f, double lambda, double negative, double k, double* c) {
+  constexpr double kBound = 0.5;
+  const double a = lambda * f.hxx, b = lambda * f.hxy, d = lambda * f.hyy;
+  const double m = 0.5 * (a + d), r = std::hypot(0.5 * (a - d), b);
+  const double phi = 0.5 * std::atan2(2 * b, a - d);  // direction of the larger eigenvalue
+  double hi = m + r, lo = m - r;
+  auto soften = [&](double e) { return e >= 0 ? e : std::max(negative * e, -kBound * k); };
+  const bool clipped = negative * std::min(lo, 0.0) < -kBound * k;
+  hi = soften(hi);
+  lo = soften(lo);
+  const double cs = std::cos(phi), sn = std::sin(phi);
+  const double block[9] = {hi * cs * cs + lo * sn * sn, (hi - lo) * cs * sn, 0,
+                           (hi - lo) * cs * sn, hi * sn * sn + lo * cs * cs, 0, 0, 0, 0};
+  std::copy(block, block + 9, c);
+  return clipped;
+}
+
+}  // namespace
+
+double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s,
+                                              const CurvatureScales& curvature, int& clipped) {
   const int fnx = face_nx();
+  clipped = 0;
   std::fill(s.q_mine.begin(), s.q_mine.end(), 0.0);
   for (const FaceNode& f : face) {
     const auto q = frame_of(f.normal);
@@ -167,6 +227,39 @@ double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face,
   }
   MPI_Allreduce(s.q_mine.data(), s.q_all.data(), int(s.q_all.size()), MPI_DOUBLE, MPI_SUM, comm);
   stiffness->set_frames(s.q_all);
+  if (curvature.on) {
+    const double scale_all = curvature.all, negative = curvature.negative;
+    const PetscInt rstart = 3 * PetscInt(own_begin);
+    if (face_stiffness.empty()) {
+      // Before any block is added the diagonal blocks are K's, rotated: their trace is K's.
+      check(MatGetDiagonal(stiffness->mat(), s.diag), "MatGetDiagonal");
+      const PetscScalar* da;
+      VecGetArrayRead(s.diag, &da);
+      for (const FaceNode& f : face)
+        face_stiffness.push_back((da[f.row[0] - rstart] + da[f.row[1] - rstart] + da[f.row[2] - rstart]) / 3);
+      VecRestoreArrayRead(s.diag, &da);
+    }
+    // C per face slot (the q_mine buffer, zeroed: only the owned slots are read), and C u.
+    std::fill(s.q_mine.begin(), s.q_mine.end(), 0.0);
+    if (!s.shift) check(VecDuplicate(u, &s.shift), "VecDuplicate");
+    check(VecSet(s.shift, 0.0), "VecSet");
+    const PetscScalar* ua;
+    PetscScalar* sa;
+    VecGetArrayRead(u, &ua);
+    VecGetArray(s.shift, &sa);
+    for (std::size_t n = 0; n < face.size(); ++n) {
+      const FaceNode& f = face[n];
+      if (lambda[n] == 0 || scale_all == 0) continue;
+      double* c = &s.q_mine[9 * (std::size_t(f.j) * (fnx + 1) + std::size_t(f.i))];
+      clipped += curvature_block(f, scale_all * lambda[n], negative, face_stiffness[n], c);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) sa[f.row[i] - rstart] += c[3 * i + j] * ua[f.row[j] - rstart];
+    }
+    VecRestoreArrayRead(u, &ua);
+    VecRestoreArray(s.shift, &sa);
+    stiffness->set_face_blocks(s.q_mine);
+    stiffness->rotate_vector(s.shift, s.q_all, true);
+  }
   check(MatGetDiagonal(stiffness->mat(), s.diag), "MatGetDiagonal");
   check(VecCopy(u, s.uh), "VecCopy");
   stiffness->rotate_vector(s.uh, s.q_all, true);

@@ -16,7 +16,14 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
   // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led
   // a shear step to a state 1.4x deeper in the obstacle than allowed. Blend normals only.
-  const bool smooth_map = load.follow_geometry && load.obstacle && !load.facet_normals;
+  // Newton on the C2 obstacle (ContactLoad::smooth): full steps, none of the fixed-point
+  // iteration's devices (damping, jumps).
+  const bool newton = load.follow_geometry && load.smooth;
+  if (newton && m.lambda.size() != face.size()) m.lambda.assign(face.size(), 0.0);
+  Impl::CurvatureScales curvature;
+  curvature.on = newton;
+  curvature.all = std::clamp(load.curvature, 0.0, 1.0);
+  const bool smooth_map = load.follow_geometry && load.obstacle && !load.facet_normals && !newton;
   SlowModeExtrapolation extrapolation(m.u, smooth_map ? load.extrapolate_every : 0);
   // The face's in-plane rigid modes under a fixed top (FaceModeExtrapolation).
   const bool modes_on = smooth_map && load.top == TopCondition::fixed && load.face_mode_extrapolation;
@@ -62,7 +69,9 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     t_phase = MPI_Wtime();
 
     // 2. Rotate the face nodes into their constraint frames: Khat = R^T K R, uh = R^T u.
-    const double unit_diag = m.rotate_into_frames(face, s);
+    int clipped = 0;
+    const double unit_diag = m.rotate_into_frames(face, s, curvature, clipped);
+    if (newton) MPI_Allreduce(&clipped, &out.clipped_nodes, 1, MPI_INT, MPI_SUM, m.comm);
     out.wall_rotate += MPI_Wtime() - t_phase;
     t_phase = MPI_Wtime();
 
@@ -91,6 +100,19 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
                                  : load.max_active_set_iterations;
     control.reuse_preconditioner = load.reuse_preconditioner;
     const Impl::ActiveSetOutcome as = m.solve_active_set(face, top, s, control, out);
+    if (!as.ok && newton && curvature.negative > 0 && curvature.all > 0 &&
+        out.message.rfind("linear solve failed", 0) == 0) {
+      // CG met an indefinite system: the softening curvature outweighed the stiffness somewhere
+      // (multipliers of an early iteration, or a node perched on a sharp peak). Repeat this
+      // iteration with less of it; it grows back while the systems stay definite.
+      curvature.negative = curvature.negative > 0.01 ? 0.25 * curvature.negative : 0.0;
+      ++out.curvature_cuts;
+      if (load.trace && m.rank == 0)
+        std::fprintf(stderr, "    %s: softening curvature scaled by %.3g\n", out.message.c_str(), curvature.negative);
+      out.message.clear();
+      continue;
+    }
+    if (newton) curvature.negative = std::min(1.0, 2 * curvature.negative);
     if (!as.ok) {
       if (out.message.empty())
         out.message = "active set still changing after " + std::to_string(load.max_active_set_iterations) +
@@ -115,6 +137,9 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       for (std::size_t n = 0; n < face.size(); ++n)
         normal_force[n] = m.active[n] ? ra[face[n].row[2] - 3 * PetscInt(m.own_begin)] : 0.0;
       VecRestoreArrayRead(s.r, &ra);
+      // The force is lambda grad g and |grad g| = 1 / N_z.
+      if (newton)
+        for (std::size_t n = 0; n < face.size(); ++n) m.lambda[n] = normal_force[n] * face[n].normal.z;
     }
 
     // 4. Next iterate: a damped step towards the linearised solution u*. Convergence measure:
@@ -131,12 +156,13 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
         std::fprintf(stderr, "    slow-mode jump undone: change %.2e after it, %.2e before\n", change, before);
       continue;  // re-linearise where the jump started
     }
-    if (load.follow_geometry) damping.after_correction(corr.cosine);
+    const bool damped = load.follow_geometry && !newton;
+    if (damped) damping.after_correction(corr.cosine);
     out.history.push_back(change);
     smallest_change = std::min(smallest_change, change);
-    if (load.follow_geometry) damping.after_change(out.history);
-    const double alpha = load.follow_geometry ? damping.alpha() : 1.0;
-    const double step_change = damping.step_change(change);
+    if (damped) damping.after_change(out.history);
+    const double alpha = damped ? damping.alpha() : 1.0;
+    const double step_change = damped ? damping.step_change(change) : change;
     check(VecScale(m.u, 1 - alpha), "VecScale");
     check(VecAXPY(m.u, alpha, s.ustar), "VecAXPY");
     const auto forces = m.top_forces(s.ustar, top, s.r);
@@ -150,9 +176,11 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     const double trace_pen_star = trace_depths ? m.deepest_penetration(face, s.ustar, load) : 0.0;
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
-                   "    signorini %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  pen %.2e  pen* %.2e  [%.1f s]\n",
-                   outer + 1, change, alpha, out.contact_nodes, as.settled ? "" : "+", out.active_set_iterations,
-                   out.linear_iterations, rtol, trace_fz, trace_fx, trace_pen, trace_pen_star, MPI_Wtime() - t_solve_start);
+                   "    %s %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  pen %.2e  pen* %.2e%s  [%.1f s]\n",
+                   newton ? "newton" : "signorini", outer + 1, change, alpha, out.contact_nodes, as.settled ? "" : "+",
+                   out.active_set_iterations, out.linear_iterations, rtol, trace_fz, trace_fx, trace_pen, trace_pen_star,
+                   newton ? ("  curv- " + std::to_string(curvature.negative).substr(0, 5) + " clipped " + std::to_string(out.clipped_nodes)).c_str() : "",
+                   MPI_Wtime() - t_solve_start);
     if (!load.trace && load.progress_every_s > 0 && m.rank == 0 &&
         MPI_Wtime() - last_progress >= load.progress_every_s) {
       last_progress = MPI_Wtime();

@@ -153,7 +153,40 @@ void FramedStiffness::set_frames(const std::vector<double>& frames) {
   frames_ = frames;
 }
 
-void FramedStiffness::eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b) {
+void FramedStiffness::set_face_blocks(const std::vector<double>& blocks) {
+  if (blocks.size() != frames_.size()) throw std::invalid_argument("FramedStiffness: 9 block entries per face node");
+  restore();
+  if (face_blocks_.empty()) face_blocks_.assign(frames_.size(), 0.0);
+  edit_values([&](int p, PetscScalar* v) {
+    if (p != 0) return;  // diagonal blocks live in the diagonal part
+    const Part& q = parts_[0];
+    for (PetscInt a = 0; a < own_end_ - own_begin_; ++a) {
+      const std::int32_t s = face_slot_[std::size_t(own_begin_ + a)];
+      if (s < 0) continue;
+      const std::size_t o = 9 * std::size_t(s);
+      Block d;
+      bool any = false;
+      for (int k = 0; k < 9; ++k) any |= (d[k] = blocks[o + k] - face_blocks_[o + k]) != 0;
+      if (!any) continue;
+      // Q^T d Q: the change in this node's frame.
+      const double* qm = &frames_[o];
+      double t[9], r[9];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) t[3 * i + j] = qm[i] * d[j] + qm[3 + i] * d[3 + j] + qm[6 + i] * d[6 + j];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r[3 * i + j] = t[3 * i] * qm[j] + t[3 * i + 1] * qm[3 + j] + t[3 * i + 2] * qm[6 + j];
+      const PetscInt r0 = q.ia[3 * a], len = q.ia[3 * a + 1] - r0;
+      PetscInt k = 0;
+      while (k < len && q.ja[r0 + k] != 3 * a) k += 3;
+      if (k >= len) throw std::runtime_error("FramedStiffness: a face node without its diagonal block");
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) v[q.ia[3 * a + i] + k + j] += r[3 * i + j];
+    }
+  });
+  face_blocks_ = blocks;
+}
+
+void FramedStiffness::eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b, Vec f) {
   restore();
   const PetscInt r0 = 3 * own_begin_, nrows = 3 * (own_end_ - own_begin_);
   std::vector<char> local(std::size_t(nrows), 0);
@@ -172,8 +205,12 @@ void FramedStiffness::eliminate(const std::vector<PetscInt>& rows, double unit_d
     check(VecRestoreArray(work_, &wa), "VecRestoreArray");
     check(MatMult(k_, work_, b), "MatMult");
     PetscScalar* ba;
+    const PetscScalar* fa = nullptr;
     check(VecGetArray(b, &ba), "VecGetArray");
-    for (PetscInt i = 0; i < nrows; ++i) ba[i] = local[std::size_t(i)] ? unit_diag * xa[i] : -ba[i];
+    if (f) check(VecGetArrayRead(f, &fa), "VecGetArrayRead");
+    for (PetscInt i = 0; i < nrows; ++i)
+      ba[i] = local[std::size_t(i)] ? unit_diag * xa[i] : (fa ? fa[i] : 0.0) - ba[i];
+    if (f) check(VecRestoreArrayRead(f, &fa), "VecRestoreArrayRead");
     check(VecRestoreArray(b, &ba), "VecRestoreArray");
     check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
   }

@@ -13,6 +13,11 @@
 //   eliminated, so the saved part is small).
 // The values are edited through the AIJ arrays; the pattern never changes.
 //
+// Face blocks: set_face_blocks(C) adds a symmetric 3 x 3 block C_s (given in the global xyz
+// frame) to each face node's diagonal block, so that the matrix is R^T (K + C) R; the Newton
+// iteration on a curved obstacle puts the curvature of its contact constraints there
+// (elastic_block_solve.cpp). Rotations carry the blocks along; they stay until replaced.
+//
 // Contract: K is an assembled AIJ matrix (MATSEQAIJ or MATMPIAIJ) with 3 dofs per node
 // (dof = 3 node + c), rows partitioned by whole nodes, and, per node, three rows with one
 // column pattern made of whole column nodes (what ElasticBlock assembles); the constructor
@@ -40,13 +45,17 @@ class FramedStiffness {
 
   // Khat <- R_new^T K R_new. Restores any elimination first.
   void set_frames(const std::vector<double>& frames);
+  // Khat <- R^T (K + C) R with C the given blocks, 9 per face slot (row-major, global frame;
+  // only the owned slots are read; all zero: K alone). Restores any elimination first.
+  void set_face_blocks(const std::vector<double>& blocks);
   // Zeroes the rows and columns `rows` (global, owned), their diagonal set to unit_diag; b gets
-  // -Khat x on the other rows and unit_diag x on these (MatZeroRowsColumns's convention), so
-  // that the reduced system keeps x's values there. x and b are distinct vectors like Khat's.
-  void eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b);
+  // f - Khat x on the other rows (f = 0 when null) and unit_diag x on these
+  // (MatZeroRowsColumns's convention), so that the reduced system keeps x's values there.
+  // x, b and f are distinct vectors like Khat's.
+  void eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b, Vec f = nullptr);
   // Undoes eliminate() (no-op without one).
   void restore();
-  // out = K v in the original frames (v not changed; out distinct from v). Restores any
+  // out = (K + C) v in the original frames (v not changed; out distinct from v). Restores any
   // elimination first.
   void multiply_unrotated(Vec v, Vec out);
   // v <- R^T v (transpose) or R v on the owned face nodes, with the given frames.
@@ -69,6 +78,7 @@ class FramedStiffness {
   PetscInt own_begin_ = 0, own_end_ = 0;  // owned node ids
   std::vector<std::int32_t> face_slot_;
   std::vector<double> frames_;  // 9 per face slot; identity at the start
+  std::vector<double> face_blocks_;  // C, 9 per face slot (empty: none yet)
   Part parts_[2];
   int n_parts_ = 1;
   const PetscInt* garray_ = nullptr;  // global columns of the off-process part

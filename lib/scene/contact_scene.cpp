@@ -34,6 +34,8 @@ ContactTestOptions block_options(const ContactScene& s) {
   o.young = s.young;
   o.poisson = s.poisson;
   o.follow_geometry = s.follow_geometry;
+  o.iteration = s.iteration;
+  o.curvature = s.curvature;
   o.tolerance = s.tolerance;
   o.damping = s.damping;
   o.extrapolate_every = s.extrapolate_every;
@@ -272,6 +274,8 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"face_modes", s.face_modes},
           {"ksp_rtol", s.ksp_rtol},
           {"follow_geometry", s.follow_geometry},
+          {"iteration", contact_iteration_name(s.iteration)},
+          {"curvature", s.curvature},
           {"block_normals", s.block_normals},
           {"amg", amg_hierarchy_name(s.amg)}};
 }

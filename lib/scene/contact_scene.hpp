@@ -60,6 +60,8 @@ struct ContactScene {
   bool face_modes = false;    // slow-mode jumps along the face's rigid modes too (experimental)
   double ksp_rtol = 1e-7;     // CG tolerance of a step's final linear solves
   bool follow_geometry = true;  // false: one linearisation with vertical normals
+  ContactIteration iteration = ContactIteration::signorini;  // FEM: Algorithm 1 or Newton (C2 obstacle)
+  double curvature = 1.0;       // FEM Newton: scale of the constraints' second-order term
   double block_normals = 0;   // > 0: the block's own normals, relaxed so (experimental)
   AmgHierarchy amg = AmgHierarchy::automatic;
 };
