@@ -30,6 +30,10 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
   c.ux = s.add_option("--ux", sc.ux, "final tangential displacement of the top face (shear), m");
   s.add_option("--steps", sc.normal_steps, "load steps of the normal phase")->capture_default_str();
   s.add_option("--shear-steps", sc.shear_steps, "load steps of the shear phase (0: as --steps)")->capture_default_str();
+  s.add_flag("--to-peak", sc.to_peak,
+             "fem shear: stop at the first converged step after the friction peak whose mu is lower (the static "
+             "friction found), --ux being then the most the top may move; steps start at --ux / --shear-steps and "
+             "lengthen (x1.5 at most) after easy steps, shorten (x0.5) after hard ones");
   s.add_option("--refine", sc.refine,
                "contact-face spacing = surface spacing / refine (fem mesh; spectral grid on the triangulated surface)")
       ->capture_default_str();

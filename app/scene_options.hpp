@@ -18,7 +18,7 @@ struct SceneCli {
   CLI::Option *uz = nullptr, *ux = nullptr;
 };
 
-// --uz --ux --steps --shear-steps --refine --height --layers --coarsen --E --nu --damping
+// --uz --ux --steps --shear-steps --to-peak --refine --height --layers --coarsen --E --nu --damping
 // --extrapolate --face-modes --coarse-start --max-penetration --cutbacks --predictor --ksp-rtol
 // --tol --spectral-tol --max-iterations --iteration --curvature --vertical --facet-normals --facet-band --block-normals
 // --amg --thickness.

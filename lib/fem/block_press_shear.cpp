@@ -30,6 +30,12 @@ BlockState secant_start(const BlockState& last, const BlockState& prev, double r
 
 }  // namespace
 
+double adapt_shear_step(double last_step, int iterations, double first) {
+  constexpr double kTargetIterations = 20;
+  const double factor = std::clamp(kTargetIterations / std::max(iterations, 1), 0.5, 1.5);
+  return std::clamp(last_step * factor, first / 8, 4 * first);
+}
+
 std::vector<LoadTarget> load_plan(const ContactTestOptions& opt) {
   std::vector<LoadTarget> plan;
   for (int k = 1; k <= opt.normal_steps; ++k) plan.push_back({opt.uz * k / opt.normal_steps, 0.0, opt.max_cutbacks});
@@ -309,9 +315,20 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       res.failed = true;
       break;
     }
+    const double step_ux = plan[k].ux - last.ux;
     prev = std::exchange(last, plan[k]);
     if (predict) prev_state = std::move(last_state);
     if (keep_states) last_state = block.state();
+    if (opt.to_peak && opt.shear && step_ux > 0) {
+      if (peak_reached(res.steps)) break;  // the curve turned over: the static friction is found
+      // The rest of the shear phase, re-planned from here: one step, sized by this one's work.
+      plan.erase(plan.begin() + std::ptrdiff_t(k) + 1, plan.end());
+      const double first = opt.ux / opt.shear_steps;
+      const double next = std::min(opt.ux, last.ux + adapt_shear_step(step_ux, s.outer_iterations, first));
+      if (next > last.ux * (1 + 1e-12)) plan.push_back({opt.uz, next, opt.max_cutbacks});
+      if ((opt.trace || opt.progress_every_s > 0) && rank_of(opt.comm) == 0 && plan.size() > k + 1)
+        std::fprintf(stderr, "  shear to the peak: mu %.4f at ux %.4g m; next step to ux %.4g m\n", st.mu, last.ux, next);
+    }
   }
   if (!opt.vtu_path.empty()) block.write_vtu(opt.vtu_path);
   res.wall_s = MPI_Wtime() - t_start;

@@ -36,6 +36,11 @@ struct ContactTestOptions {
   double ux = 0;            // m, final tangential displacement (shear)
   int normal_steps = 4;
   int shear_steps = 4;
+  // Shear until the mu(ux) curve has turned over (peak_reached): the shear phase starts with
+  // steps of ux / shear_steps and ends at the first converged step after the peak whose mu is
+  // lower, or at ux (then the peak is only a lower bound, as without this). Each next step is
+  // sized from the last one's Signorini iterations (adapt_shear_step).
+  bool to_peak = false;
   int refine = 2;           // contact-face spacing = obstacle spacing / refine
   // > 0 (and < refine, dividing it): nested iteration. Every step is solved first on a block
   // with this refinement, and its increment, interpolated to this block's face and lifted into
@@ -93,6 +98,13 @@ struct LoadTarget {
 // r > 0 when `next` continues the straight path prev -> last in its direction (next - last =
 // r (last - prev)); 0 otherwise (a turn, as from the normal phase into the shear, or no step).
 double continuation_ratio(const LoadTarget& prev, const LoadTarget& last, const LoadTarget& next);
+
+// With ContactTestOptions::to_peak: the next shear increment (m) after a converged one of
+// `last_step` m that took `iterations` Signorini iterations. Why by iterations: the work of a
+// step grows with how far its face must travel over the obstacle, so a step that came easily
+// is followed by a longer one (at most x 1.5) and a hard one by a shorter one (at least x 0.5),
+// between first / 8 and 4 x first (`first`: ux / shear_steps).
+double adapt_shear_step(double last_step, int iterations, double first);
 
 // The requested states in order: opt.normal_steps equal normal increments to uz, then (shear)
 // opt.shear_steps equal tangential increments to ux at uz.

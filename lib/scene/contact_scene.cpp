@@ -26,6 +26,7 @@ ContactTestOptions block_options(const ContactScene& s) {
   o.ux = s.ux;
   o.normal_steps = s.normal_steps;
   o.shear_steps = s.shear_steps;
+  o.to_peak = s.to_peak;
   o.refine = s.refine;
   o.coarse_refine = s.coarse_refine;
   o.height = s.height;
@@ -55,6 +56,8 @@ ContactTestOptions block_options(const ContactScene& s) {
 
 void check_contact_scene(const ContactScene& s) {
   const bool spectral = s.model == ContactModel::spectral;
+  if (s.to_peak && (s.model != ContactModel::fem || !s.shear))
+    throw InputError("--to-peak", "shears the FEM block until mu turns over: needs --model fem and the shear problem");
   if (s.model == ContactModel::analytic && s.shear)
     throw InputError("--model", "the analytic model has no shear test; use fem or spectral");
   if (!(s.pressure >= 0 && std::isfinite(s.pressure))) throw InputError("--pressure", "must be a finite pressure >= 0 Pa");
@@ -252,6 +255,7 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"ux", s.ux},
           {"normal_steps", s.normal_steps},
           {"shear_steps", s.shear_steps},
+          {"to_peak", s.to_peak},
           {"refine", s.refine},
           {"E", s.young},
           {"nu", s.poisson},

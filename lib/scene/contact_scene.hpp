@@ -30,6 +30,7 @@ struct ContactScene {
   double uz = 0;              // m, final normal displacement of the top (> 0)
   double ux = 0;              // m, final tangential displacement (shear, > 0)
   int normal_steps = 3, shear_steps = 3;
+  bool to_peak = false;       // FEM: shear until mu(ux) turns over (ContactTestOptions::to_peak)
   int refine = 1;             // contact-face spacing = obstacle spacing / refine
   double young = 1.0, poisson = 0.45;  // Pa, -
   double height = 0;          // m, block height (0: the period, a cube)

@@ -1,0 +1,67 @@
+// The FEM shear test's adaptive phase (ContactTestOptions::to_peak): the step controller, and a
+// block sheared over ridges until its friction curve turns over. Runs on 1 and 2 ranks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "lib/fem/block_press_shear.hpp"
+#include "lib/fem/petsc_session.hpp"
+#include "roads/height_stats.hpp"
+
+namespace wr {
+namespace {
+
+TEST(ShearToPeak, StepsFollowTheLastStepsWorkWithinBounds) {
+  const double first = 1e-3;
+  EXPECT_DOUBLE_EQ(adapt_shear_step(first, 20, first), first);        // on target: unchanged
+  EXPECT_DOUBLE_EQ(adapt_shear_step(first, 5, first), 1.5 * first);   // easy: at most x 1.5
+  EXPECT_DOUBLE_EQ(adapt_shear_step(first, 200, first), 0.5 * first); // hard: at least x 0.5
+  EXPECT_DOUBLE_EQ(adapt_shear_step(3.9 * first, 1, first), 4 * first);
+  EXPECT_DOUBLE_EQ(adapt_shear_step(first / 7, 300, first), first / 8);
+}
+
+// Saw-tooth ridges across a 3 cm block (4 teeth, faces of slope 0.2 falling along x, then a
+// one-cell rise): sheared along x, mu rises (measured: 0.07 pressed, then 0.14, 0.19, 0.25 at
+// 1.3, 2.4, 3.6 mm, the steps lengthening) and falls (0.10 at 4.9 mm) when the contact passes
+// the teeth. With to_peak the run ends at that first lower step, long before ux = L / 2.
+TEST(ShearToPeak, EndsWhenTheFrictionCurveTurnsOver) {
+  const std::size_t n = 32, tooth = 8;
+  const double L = 0.03, dx = L / n, slope = 0.2;
+  HeightMap ridges(n, n, dx, dx);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) ridges(i, j) = slope * dx * double(tooth - 1 - i % tooth);
+  ContactTestOptions o;
+  o.shear = true;
+  o.uz = 1e-3;
+  o.normal_steps = 1;
+  o.ux = L / 2;
+  o.shear_steps = 12;
+  o.to_peak = true;
+  o.refine = 1;
+  o.tolerance = 1e-5;
+  o.rms_slope = rms_slope_finite_difference(ridges, 1);
+  const ContactTestResult r = run_contact_test(ridges, o, nullptr);
+  ASSERT_FALSE(r.failed);
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0)
+    for (const ContactStep& s : r.steps) std::printf("  ux %.3e  mu %.4f  its %d\n", s.ux, s.mu, s.signorini_iterations);
+  ASSERT_GE(r.steps.size(), 4u);
+  EXPECT_TRUE(peak_reached(r.steps));
+  const ContactStep* peak = peak_friction(r.steps);
+  ASSERT_NE(peak, nullptr);
+  EXPECT_EQ(peak + 2, r.steps.data() + r.steps.size());  // exactly one step after the peak
+  EXPECT_LT(r.steps.back().ux, o.ux);
+  EXPECT_GT(peak->mu, 0.05);
+  for (const ContactStep* s = r.steps.data() + 2; s <= peak; ++s) EXPECT_GT(s->mu, (s - 1)->mu);
+}
+
+}  // namespace
+}  // namespace wr
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  wr::PetscSession petsc(&argc, &argv);
+  return RUN_ALL_TESTS();
+}
