@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "lib/analytic/hertz.hpp"
+#include "tests/hertz_check.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/fem/block_press_shear.hpp"
 #include "lib/fem/elastic_block.hpp"
 #include "lib/fem/amg_hierarchy.hpp"
-#include "lib/fem/petsc_session.hpp"
 #include "lib/contact/adaptive_damping.hpp"
 #include "lib/contact/friction_convergence.hpp"
 #include "lib/fem/penetration_retries.hpp"
@@ -531,17 +531,7 @@ TEST(Fem, ParaboloidMatchesHertz) {
   load.face_maps = true;
   const ContactSolution s = block.solve(load);
   ASSERT_TRUE(s.converged) << s.message;
-  int rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (rank != 0) return;  // the face maps live on rank 0
-  const double e_star = 1.0 / (1 - nu * nu), h = L / 64;
-  const double a_count = std::sqrt(double(s.contact_nodes) * h * h / M_PI);
-  const HertzFit fit = fit_hertz_pressure(s.face_pressure, 65, 65, h, L / 2, L / 2, a_count);
-  ASSERT_TRUE(fit.ok);
-  const double a_hertz = hertz_radius(s.fz, R, e_star);
-  EXPECT_NEAR(fit.radius / a_hertz, 1.0, 0.03);
-  EXPECT_NEAR(s.fz / hertz_force(fit.radius, R, e_star), 1.0, 0.03);
-  EXPECT_NEAR(fit.peak_pressure / (3 * s.fz / (2 * M_PI * a_hertz * a_hertz)), 1.0, 0.03);
+  expect_hertz_contact(s, L, 64, R, nu, 0.03);
 }
 
 
@@ -749,9 +739,3 @@ TEST(Fem, FrictionlessShearOnAGentleObstacleAgreesWithTheSpectralLayer) {
 
 }  // namespace
 }  // namespace wr
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  wr::PetscSession petsc(&argc, &argv);
-  return RUN_ALL_TESTS();
-}

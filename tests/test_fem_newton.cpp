@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "lib/analytic/hertz.hpp"
+#include "tests/hertz_check.hpp"
 #include "lib/fem/block_press_shear.hpp"
 #include "lib/fem/elastic_block.hpp"
-#include "lib/fem/petsc_session.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/synthesize.hpp"
 
@@ -54,15 +54,7 @@ TEST(FemNewton, ParaboloidMatchesHertz) {
   }
   EXPECT_LE(s.outer_iterations, 12);  // measured 9: the contact edge settles, then two quadratic steps
   EXPECT_LT(s.max_penetration, 1e-4 * load.uz);
-  if (rank() != 0) return;  // the face maps live on rank 0
-  const double e_star = 1.0 / (1 - nu * nu), h = L / 64;
-  const double a_count = std::sqrt(double(s.contact_nodes) * h * h / M_PI);
-  const HertzFit fit = fit_hertz_pressure(s.face_pressure, 65, 65, h, L / 2, L / 2, a_count);
-  ASSERT_TRUE(fit.ok);
-  const double a_hertz = hertz_radius(s.fz, R, e_star);
-  EXPECT_NEAR(fit.radius / a_hertz, 1.0, 0.03);
-  EXPECT_NEAR(s.fz / hertz_force(fit.radius, R, e_star), 1.0, 0.03);
-  EXPECT_NEAR(fit.peak_pressure / (3 * s.fz / (2 * M_PI * a_hertz * a_hertz)), 1.0, 0.03);
+  expect_hertz_contact(s, L, 64, R, nu, 0.03);
 }
 
 // A gentle self-affine patch (rms slope ~0.15, 16 x 16 lattice, refine 2), pressed to about half
@@ -134,9 +126,3 @@ TEST(FemNewton, ConvergesSuperlinearlyToTheGaussNewtonFixedPoint) {
 
 }  // namespace
 }  // namespace wr
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  wr::PetscSession petsc(&argc, &argv);
-  return RUN_ALL_TESTS();
-}

@@ -30,10 +30,9 @@ BlockState secant_start(const BlockState& last, const BlockState& prev, double r
 
 }  // namespace
 
-double adapt_shear_step(double last_step, int iterations, double first) {
-  constexpr double kTargetIterations = 20;
-  const double factor = std::clamp(kTargetIterations / std::max(iterations, 1), 0.5, 1.5);
-  return std::clamp(last_step * factor, first / 8, 4 * first);
+double adapt_shear_step(double last_step, int iterations, int reference, double first) {
+  const double ratio = double(iterations) / double(std::max(reference, 1));
+  return std::max(ratio > 2 ? 0.5 * last_step : last_step, first / 8);
 }
 
 std::vector<LoadTarget> load_plan(const ContactTestOptions& opt) {
@@ -213,6 +212,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   BlockState prev_state;                // empty until two states are known
   double wasted_s = 0;                  // wall time of failed attempts, charged to the next step
   int failed_attempts = 0;
+  int first_shear_iterations = 0;       // to_peak: the reference of adapt_shear_step
   for (std::size_t k = 0; k < plan.size(); ++k) {
     load.uz = plan[k].uz;
     load.ux = plan[k].ux;
@@ -321,10 +321,12 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     if (keep_states) last_state = block.state();
     if (opt.to_peak && opt.shear && step_ux > 0) {
       if (peak_reached(res.steps)) break;  // the curve turned over: the static friction is found
+      if (first_shear_iterations == 0) first_shear_iterations = s.outer_iterations;
       // The rest of the shear phase, re-planned from here: one step, sized by this one's work.
       plan.erase(plan.begin() + std::ptrdiff_t(k) + 1, plan.end());
       const double first = opt.ux / opt.shear_steps;
-      const double next = std::min(opt.ux, last.ux + adapt_shear_step(step_ux, s.outer_iterations, first));
+      const double next =
+          std::min(opt.ux, last.ux + adapt_shear_step(step_ux, s.outer_iterations, first_shear_iterations, first));
       if (next > last.ux * (1 + 1e-12)) plan.push_back({opt.uz, next, opt.max_cutbacks});
       if ((opt.trace || opt.progress_every_s > 0) && rank_of(opt.comm) == 0 && plan.size() > k + 1)
         std::fprintf(stderr, "  shear to the peak: mu %.4f at ux %.4g m; next step to ux %.4g m\n", st.mu, last.ux, next);
