@@ -436,7 +436,7 @@ Command add_contact(CLI::App& root) {
   s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)");
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
-  s->add_flag("--trace", c->trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time)");
+  s->add_flag("--trace", c->trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time); with --iteration newton also, after each converged step, whether the whole curvature term leaves the system definite there (docs/fem-solver.md, the second-order check)");
   return {s, [c] { return run_contact(*c); }};
 }
 

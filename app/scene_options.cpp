@@ -33,7 +33,7 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
   s.add_flag("--to-peak", sc.to_peak,
              "fem shear: stop at the first converged step after the friction peak whose mu is lower (the static "
              "friction found), --ux being then the most the top may move; steps start at --ux / --shear-steps and "
-             "lengthen (x1.5 at most) after easy steps, shorten (x0.5) after hard ones");
+             "halve after a step twice as hard as the first one (down to 1/8), never lengthen");
   s.add_option("--refine", sc.refine,
                "contact-face spacing = surface spacing / refine (fem mesh; spectral grid on the triangulated surface)")
       ->capture_default_str();

@@ -130,6 +130,9 @@ struct ElasticBlock::Impl {
   // Newton: per owned face node, its contact force per unit constraint gradient (N) from the
   // last active-set solve, carried between solves: the weight of its curvature term.
   std::vector<double> lambda;
+  // Newton: scale of the softening part of the curvature term, cut after an indefinite system
+  // and kept so, for the rest of the solve and the next solves (see solve()).
+  double softening_scale = 1;
   std::vector<double> face_stiffness;  // Newton: K's mean diagonal entry per owned face node, N/m
   std::vector<std::int32_t> face_slot;  // per node id: its face index j (nx+1) + i, or -1
 
@@ -248,6 +251,15 @@ struct ElasticBlock::Impl {
   };
   double rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s, const CurvatureScales& curvature,
                             int& clipped);
+  // Newton, --trace, at a converged state: whether the system with the whole curvature term
+  // (softening scale 1, still floored per node) is definite on the free dofs, i.e. on the
+  // tangent space of the contact set: the second-order condition Newton's fast local rate rests
+  // on (where it fails, the state is held only by nodes at zero gap and zero force); and
+  // the curvature the contact forces give the face's rigid slide along x and y
+  // (sum of lambda h_xx, lambda h_yy over the contact nodes, N/m) against the block's shear
+  // stiffness G Lx Ly / Lz. Overwrites the linear systems; the caller has its result already.
+  void print_second_order_check(std::vector<FaceNode>& face, const TopBoundary& top, LinearSystems& s,
+                                const ContactLoad& load, double ksp_rtol);
   // The obstacle in use at (x, y): its height and the vertical component of its unit normal.
   struct SurfacePoint {
     double h = 0, nz = 1;

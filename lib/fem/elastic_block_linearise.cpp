@@ -272,4 +272,47 @@ double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face,
   return diag_sum / double(diag_n);
 }
 
+void ElasticBlock::Impl::print_second_order_check(std::vector<FaceNode>& face, const TopBoundary& top,
+                                                  LinearSystems& s, const ContactLoad& load, double ksp_rtol) {
+  // What the step's result still needs from the systems: the reactions and the contact set.
+  Vec r_kept = nullptr;
+  check(VecDuplicate(s.r, &r_kept), "VecDuplicate");
+  check(VecCopy(s.r, r_kept), "VecCopy");
+  const std::vector<char> active_kept = active;
+  linearise(face, load);
+  double slide[2] = {0, 0};
+  for (std::size_t n = 0; n < face.size(); ++n) {
+    slide[0] += lambda[n] * face[n].hxx;
+    slide[1] += lambda[n] * face[n].hyy;
+  }
+  double slide_all[2];
+  MPI_Allreduce(slide, slide_all, 2, MPI_DOUBLE, MPI_SUM, comm);
+  CurvatureScales full;
+  full.on = true;
+  full.all = std::clamp(load.curvature, 0.0, 1.0);
+  full.negative = 1;
+  int clipped = 0, clipped_all = 0;
+  ActiveSetControl control;
+  control.unit_diag = rotate_into_frames(face, s, full, clipped);
+  MPI_Allreduce(&clipped, &clipped_all, 1, MPI_INT, MPI_SUM, comm);
+  control.max_iterations = load.max_active_set_iterations;
+  // Tight: CG meets a direction of negative curvature only once its Krylov space holds one.
+  check(KSPSetTolerances(s.ksp, std::min(ksp_rtol, 1e-10), 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
+  ContactSolution probe;
+  probe.face_nodes = std::size_t(face_nx() + 1) * (face_ny() + 1);
+  const ActiveSetOutcome as = solve_active_set(face, top, s, control, probe);
+  const double shear = spec.young / (2 * (1 + spec.poisson)) * spec.mesh.lx * spec.mesh.ly / spec.mesh.lz;
+  if (rank == 0)
+    std::fprintf(stderr,
+                 "    second-order check: the whole curvature term (%d nodes at the floor) gives %s system "
+                 "(%d CG iterations)%s; rigid slide: sum lambda h_xx %.3e, h_yy %.3e N/m against the block's shear "
+                 "stiffness %.3e N/m\n",
+                 clipped_all, as.ok ? "a definite" : "an INDEFINITE", probe.linear_iterations,
+                 as.ok ? "" : ": negative curvature on the contact set's tangent space, the state held only by nodes at zero gap and force (degenerate: no quadratic rate)",
+                 slide_all[0], slide_all[1], shear);
+  active = active_kept;
+  check(VecCopy(r_kept, s.r), "VecCopy");
+  VecDestroy(&r_kept);
+}
+
 }  // namespace wr
