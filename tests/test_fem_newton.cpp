@@ -31,6 +31,24 @@ HeightMap touching_zero(HeightMap map) {
   return map;
 }
 
+// A cube block over the map's period, `cells` face cells a side.
+BlockSpec cube_block(const HeightMap& map, int cells) {
+  BlockSpec b;
+  b.mesh.lx = map.lx();
+  b.mesh.ly = map.ly();
+  b.mesh.lz = map.lx();
+  b.mesh.nx = b.mesh.ny = cells;
+  return b;
+}
+
+// Newton's iteration on `smooth`, the triangulated `ob` of the same heights kept for bookkeeping.
+ContactLoad newton_load(const PeriodicObstacle& ob, const SmoothObstacle& smooth) {
+  ContactLoad load;
+  load.obstacle = &ob;
+  load.smooth = &smooth;
+  return load;
+}
+
 // Hertz with the full geometry: the paraboloid (R = 10 cm) of Fem.ParaboloidMatchesHertz as a
 // spline, pressed 60 um, the constraint followed at the deformed face. At a / R = 0.025 the
 // geometry's departure from Hertz's small-slope one is below 0.1 %, so the bar is the same 3 %
@@ -40,15 +58,11 @@ TEST(FemNewton, ParaboloidMatchesHertz) {
   const HeightMap cap = paraboloid_cap(256, L, R);
   const PeriodicObstacle ob(cap);
   const SmoothObstacle smooth(cap);
-  BlockSpec b;
-  b.mesh.lx = b.mesh.ly = b.mesh.lz = L;
-  b.mesh.nx = b.mesh.ny = 64;
+  BlockSpec b = cube_block(cap, 64);
   b.mesh.layers_per_level = 8;
   b.poisson = nu;
   ElasticBlock block(b);
-  ContactLoad load;
-  load.obstacle = &ob;
-  load.smooth = &smooth;
+  ContactLoad load = newton_load(ob, smooth);
   load.uz = 6e-5;
   load.ksp_rtol = 1e-8;
   load.tolerance = 1e-8;
@@ -86,15 +100,8 @@ TEST(FemNewton, ConvergesSuperlinearlyToTheGaussNewtonFixedPoint) {
     ContactSolution press, shear;
   };
   auto run = [&](double curvature) {
-    BlockSpec b;
-    b.mesh.lx = road.lx();
-    b.mesh.ly = road.ly();
-    b.mesh.lz = road.lx();
-    b.mesh.nx = b.mesh.ny = 32;
-    ElasticBlock block(b);
-    ContactLoad load;
-    load.obstacle = &ob;
-    load.smooth = &smooth;
+    ElasticBlock block(cube_block(road, 32));
+    ContactLoad load = newton_load(ob, smooth);
     load.curvature = curvature;
     load.inexact = false;
     load.ksp_rtol = 1e-11;
@@ -148,15 +155,8 @@ TEST(FemNewton, KeepsTheSofteningCutAcrossIterationsAndSteps) {
   const HeightMap shifted = touching_zero(synthesize(sp).map);
   const PeriodicObstacle ob(shifted);
   const SmoothObstacle smooth(shifted);
-  BlockSpec b;
-  b.mesh.lx = shifted.lx();
-  b.mesh.ly = shifted.ly();
-  b.mesh.lz = shifted.lx();
-  b.mesh.nx = b.mesh.ny = 50;
-  ElasticBlock block(b);
-  ContactLoad load;
-  load.obstacle = &ob;
-  load.smooth = &smooth;
+  ElasticBlock block(cube_block(shifted, 50));
+  ContactLoad load = newton_load(ob, smooth);
   load.tolerance = 1e-3;
   load.max_outer_iterations = 60;
   load.uz = 0.75e-3;
