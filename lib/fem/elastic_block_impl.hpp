@@ -252,14 +252,14 @@ struct ElasticBlock::Impl {
   double rotate_into_frames(const std::vector<FaceNode>& face, LinearSystems& s, const CurvatureScales& curvature,
                             int& clipped);
   // Newton, --trace, at a converged state: whether the system with the whole curvature term
-  // (softening scale 1, still floored per node) is definite on the free dofs, i.e. on the
+  // (the step's scales `full` with the softening one raised to 1, still floored per node) is definite on the free dofs, i.e. on the
   // tangent space of the contact set: the second-order condition Newton's fast local rate rests
   // on (where it fails, the state is held only by nodes at zero gap and zero force); and
   // the curvature the contact forces give the face's rigid slide along x and y
   // (sum of lambda h_xx, lambda h_yy over the contact nodes, N/m) against the block's shear
   // stiffness G Lx Ly / Lz. Overwrites the linear systems; the caller has its result already.
   void print_second_order_check(std::vector<FaceNode>& face, const TopBoundary& top, LinearSystems& s,
-                                const ContactLoad& load, double ksp_rtol);
+                                const ContactLoad& load, CurvatureScales full);
   // The obstacle in use at (x, y): its height and the vertical component of its unit normal.
   struct SurfacePoint {
     double h = 0, nz = 1;

@@ -273,7 +273,7 @@ double ElasticBlock::Impl::rotate_into_frames(const std::vector<FaceNode>& face,
 }
 
 void ElasticBlock::Impl::print_second_order_check(std::vector<FaceNode>& face, const TopBoundary& top,
-                                                  LinearSystems& s, const ContactLoad& load, double ksp_rtol) {
+                                                  LinearSystems& s, const ContactLoad& load, CurvatureScales full) {
   // What the step's result still needs from the systems: the reactions and the contact set.
   Vec r_kept = nullptr;
   check(VecDuplicate(s.r, &r_kept), "VecDuplicate");
@@ -287,9 +287,6 @@ void ElasticBlock::Impl::print_second_order_check(std::vector<FaceNode>& face, c
   }
   double slide_all[2];
   MPI_Allreduce(slide, slide_all, 2, MPI_DOUBLE, MPI_SUM, comm);
-  CurvatureScales full;
-  full.on = true;
-  full.all = std::clamp(load.curvature, 0.0, 1.0);
   full.negative = 1;
   int clipped = 0, clipped_all = 0;
   ActiveSetControl control;
@@ -297,7 +294,7 @@ void ElasticBlock::Impl::print_second_order_check(std::vector<FaceNode>& face, c
   MPI_Allreduce(&clipped, &clipped_all, 1, MPI_INT, MPI_SUM, comm);
   control.max_iterations = load.max_active_set_iterations;
   // Tight: CG meets a direction of negative curvature only once its Krylov space holds one.
-  check(KSPSetTolerances(s.ksp, std::min(ksp_rtol, 1e-10), 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
+  check(KSPSetTolerances(s.ksp, std::min(load.ksp_rtol, 1e-10), 1e-300, PETSC_DEFAULT, 20000), "KSPSetTolerances");
   ContactSolution probe;
   probe.face_nodes = std::size_t(face_nx() + 1) * (face_ny() + 1);
   const ActiveSetOutcome as = solve_active_set(face, top, s, control, probe);

@@ -180,12 +180,15 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
     const bool trace_depths = load.trace && load.obstacle;
     const double trace_pen = trace_depths ? m.deepest_penetration(face, m.u, load) : 0.0;
     const double trace_pen_star = trace_depths ? m.deepest_penetration(face, s.ustar, load) : 0.0;
+    char newton_state[64] = "";
+    if (newton)
+      std::snprintf(newton_state, sizeof newton_state, "  curv- %.3g clipped %d", curvature.negative, out.clipped_nodes);
     if (load.trace && m.rank == 0)
       std::fprintf(stderr,
                    "    %s %3d  change %.3e  alpha %.3f  contact %zu%s  pdas %d  cg %d  rtol %.0e  Fz %.6e  Fx %.6e  pen %.2e  pen* %.2e%s  [%.1f s]\n",
                    newton ? "newton" : "signorini", outer + 1, change, alpha, out.contact_nodes, as.settled ? "" : "+",
                    out.active_set_iterations, out.linear_iterations, rtol, trace_fz, trace_fx, trace_pen, trace_pen_star,
-                   newton ? ("  curv- " + std::to_string(curvature.negative).substr(0, 5) + " clipped " + std::to_string(out.clipped_nodes)).c_str() : "",
+                   newton_state,
                    MPI_Wtime() - t_solve_start);
     if (!load.trace && load.progress_every_s > 0 && m.rank == 0 &&
         MPI_Wtime() - last_progress >= load.progress_every_s) {
@@ -250,7 +253,7 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
       // iterate instead (u* still carries the chatter).
       if (!damping.capped()) check(VecCopy(s.ustar, m.u), "VecCopy");
       out.converged = true;
-      if (newton && load.trace && curvature.all > 0) m.print_second_order_check(face, top, s, load, load.ksp_rtol);
+      if (newton && load.trace && curvature.all > 0) m.print_second_order_check(face, top, s, load, curvature);
       break;
     }
   }

@@ -168,13 +168,9 @@ void FramedStiffness::set_face_blocks(const std::vector<double>& blocks) {
       bool any = false;
       for (int k = 0; k < 9; ++k) any |= (d[k] = blocks[o + k] - face_blocks_[o + k]) != 0;
       if (!any) continue;
-      // Q^T d Q: the change in this node's frame.
+      // Q^T d Q, the change in this node's frame (d symmetric, so d Q = d^T Q).
       const double* qm = &frames_[o];
-      double t[9], r[9];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) t[3 * i + j] = qm[i] * d[j] + qm[3 + i] * d[3 + j] + qm[6 + i] * d[6 + j];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) r[3 * i + j] = t[3 * i] * qm[j] + t[3 * i + 1] * qm[3 + j] + t[3 * i + 2] * qm[6 + j];
+      const Block r = transpose_times(qm, transpose_times(d.data(), qm).data());
       const PetscInt r0 = q.ia[3 * a], len = q.ia[3 * a + 1] - r0;
       PetscInt k = 0;
       while (k < len && q.ja[r0 + k] != 3 * a) k += 3;
