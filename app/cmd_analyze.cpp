@@ -1,4 +1,5 @@
 // `wetroad analyze FILE`: texture statistics of a surface (roads/analyze.hpp).
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -15,7 +16,7 @@ namespace wr::app {
 namespace {
 
 struct AnalyzeCli {
-  std::string input, json, out, unit = "m";
+  std::string input, json, out, unit = "m", mpd_method = "auto";
   double dx = 0, dy = 0;
   bool periodic = false, quiet = false, no_expected_mpd = false;
   int threads = 0;
@@ -26,6 +27,8 @@ struct AnalyzeCli {
 int run_analyze(const AnalyzeCli& c) {
   if (!(c.mpd.baseline > 0)) throw InputError("--baseline", "must be a positive length in m");
   if (!(c.mpd.lowpass_wavelength >= 0)) throw InputError("--lowpass", "must be >= 0 m (0 switches it off)");
+  if (!(c.mpd.spike_alpha >= 0 && std::isfinite(c.mpd.spike_alpha)))
+    throw InputError("--spike-alpha", "must be a finite slope >= 0 (0 switches spike removal off)");
   OutputSet outputs;
   outputs.input(c.input);
   const std::string json_path = outputs.add("--json", c.json), out_path = outputs.add("--out", c.out);
@@ -43,6 +46,9 @@ int run_analyze(const AnalyzeCli& c) {
   AnalysisOptions opt;
   opt.threads = c.threads;
   opt.mpd = c.mpd;
+  // A 1-D profile is a continuous record (a laser profilometer's), a map a spot measurement.
+  const bool continuous = c.mpd_method == "continuous" || (c.mpd_method == "auto" && surface.map.is_profile());
+  opt.mpd.method = continuous ? MpdMethod::continuous : MpdMethod::spot;
   opt.expected_mpd = !c.no_expected_mpd;
   AnalysisReport report = analyze_surface(surface, opt);
 
@@ -53,7 +59,10 @@ int run_analyze(const AnalyzeCli& c) {
   prov.inputs = {{"surface", c.input}, {"format", surface.format}};
   prov.parameters = {{"baseline", c.mpd.baseline},
                      {"lowpass_wavelength", c.mpd.lowpass_wavelength},
-                     {"spike_threshold", c.mpd.spike_threshold},
+                     {"highpass_wavelength", opt.mpd.method == MpdMethod::continuous ? c.mpd.highpass_wavelength : 0.0},
+                     {"mpd_method", continuous ? "continuous" : "spot"},
+                     {"resample", c.mpd.resample},
+                     {"spike_alpha", c.mpd.spike_alpha},
                      {"expected_mpd", opt.expected_mpd}};
   prov.model = "analysis";
   nlohmann::json timings = report.timer.to_json();
@@ -99,11 +108,19 @@ Command add_analyze(CLI::App& root) {
   s->add_flag("--periodic", c->periodic, "text grids: the data wraps around (default: not periodic)");
   s->add_option("--baseline", c->mpd.baseline, "MPD segment length in m (ISO 13473-1: 0.1)")->capture_default_str();
   s->add_option("--lowpass", c->mpd.lowpass_wavelength,
-                "MPD low-pass cut-off wavelength in m, 0 = off (ISO 13473-1: 2.5e-3)")
+                "MPD low-pass cut-off wavelength in m, 0 = off (ISO 13473-1:2019 Annex D: 2.4e-3)")
       ->capture_default_str();
-  s->add_option("--spike-threshold", c->mpd.spike_threshold,
-                "MPD spike jump in m, 0 = automatic (6x the rms sample-to-sample difference)")
+  s->add_option("--mpd-method", c->mpd_method,
+                "MPD of a spot measurement (least-squares line removed per segment) or a continuous one "
+                "(high-pass at 174.2 mm instead); auto: continuous for 1-D profiles, spot for maps")
+      ->check(CLI::IsMember({"auto", "spot", "continuous"}))
       ->capture_default_str();
+  s->add_option("--spike-alpha", c->mpd.spike_alpha,
+                "MPD spikes (ISO 13473-1 Annex E): neighbours of the resampled profile differing by at least "
+                "alpha x the spacing are both dropped and interpolated; 0 = off")
+      ->capture_default_str();
+  s->add_flag("!--no-resample", c->mpd.resample,
+              "MPD on the raw sampling instead of the standard's 0.5 mm (1.0 mm) bin averages (not ISO)");
   s->add_flag("--no-expected-mpd", c->no_expected_mpd,
               "skip the MPD expected on 100 mm profiles from the prescribed PSD (synthesized files)");
   s->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");

@@ -88,7 +88,10 @@ std::string format_analysis(const AnalysisReport& r) {
   row(out, "MPD", r.mpd.mpd, p.mpd, "m", pre);
   row(out, "MPD std (segments)", r.mpd.mpd_std, p.mpd_std, "m", pre);
   row(out, "ETD = 0.2 mm + 0.8 MPD", estimated_texture_depth(r.mpd.mpd), p.etd, "m", pre);
-  std::snprintf(b, sizeof b, "    %zu profiles, %zu/%zu valid segments of %.1f mm, %zu spikes%s%s\n", r.mpd.profiles,
+  std::snprintf(b, sizeof b,
+                "    along x %s m, along y %s m; %zu profiles at %.2g mm, %zu/%zu valid segments of %.1f mm, %zu spike "
+                "samples%s%s\n",
+                cell(r.mpd.mpd_x).c_str(), cell(r.mpd.mpd_y).c_str(), r.mpd.profiles, r.mpd.spacing * 1e3,
                 r.mpd.valid_segments, r.mpd.segments, r.mpd.baseline_used * 1e3, r.mpd.spikes,
                 r.mpd.note.empty() ? "" : "\n    ", r.mpd.note.empty() ? "" : ("FLAG: " + r.mpd.note).c_str());
   out += b;

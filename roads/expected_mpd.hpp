@@ -18,7 +18,7 @@ namespace wr {
 struct ExpectedMpdOptions {
   int profiles = 4;
   double length = 5.0;         // m per profile (50 segments of 100 mm)
-  double min_spacing = 5e-5;   // m; finer sampling adds nothing after the 2.5 mm low-pass
+  double min_spacing = 5e-5;   // m; finer sampling adds nothing after the 0.5 mm resampling
   std::uint64_t seed = 12345;
   MpdOptions mpd;
 };

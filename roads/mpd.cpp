@@ -9,7 +9,14 @@
 
 namespace wr {
 
-double mean_segment_depth(const double* h, std::size_t n) {
+double standard_spacing(double dx) {
+  constexpr double kFine = 0.5e-3, kCoarse = 1.0e-3;  // clause 7.4
+  if (dx <= kFine * (1 + 1e-9)) return kFine;
+  if (dx <= kCoarse * (1 + 1e-9)) return kCoarse;
+  return dx;
+}
+
+double mean_segment_depth(const double* h, std::size_t n, bool remove_line) {
   // Least-squares line over the segment, in centred sample units.
   const double c = 0.5 * double(n - 1);
   double sxx = 0, sxy = 0, sy = 0;
@@ -19,7 +26,7 @@ double mean_segment_depth(const double* h, std::size_t n) {
     sxy += x * h[i];
     sy += h[i];
   }
-  const double mean = sy / double(n), slope = sxx > 0 ? sxy / sxx : 0.0;
+  const double mean = sy / double(n), slope = remove_line && sxx > 0 ? sxy / sxx : 0.0;
   const std::size_t half = n / 2;
   double p1 = -INFINITY, p2 = -INFINITY;
   for (std::size_t i = 0; i < half; ++i) p1 = std::max(p1, h[i] - mean - slope * (double(i) - c));
@@ -27,33 +34,65 @@ double mean_segment_depth(const double* h, std::size_t n) {
   return 0.5 * (p1 + p2);
 }
 
-void add_profile_segments(std::vector<double> h, std::vector<unsigned char> invalid, double dx,
+namespace {
+
+// Clause 7.4, or the raw samples as they are (one per bin) where resampling is off or the raw
+// spacing is already the standard's.
+ResampledProfile standard_samples(const std::vector<double>& h, const std::vector<unsigned char>& dropout, double dx,
+                                  const MpdOptions& opt, MpdAccumulator& acc) {
+  const double spacing = opt.resample ? standard_spacing(dx) : dx;
+  if (spacing > 1.0e-3 * (1 + 1e-9)) acc.coarse_sampling = true;
+  if (std::abs(spacing - dx) > 1e-9 * spacing)
+    return resample_bin_average(h.data(), dropout.data(), h.size(), dx, spacing);
+  ResampledProfile r;
+  r.spacing = dx;
+  r.h = h;
+  r.raw.assign(h.size(), 1);
+  r.dropouts.assign(dropout.begin(), dropout.end());
+  return r;
+}
+
+}  // namespace
+
+void add_profile_segments(std::vector<double> h, std::vector<unsigned char> dropout, double dx,
                           const MpdOptions& opt, MpdAccumulator& acc) {
-  const std::size_t n = h.size();
   ++acc.profiles;
-  if (!interpolate_invalid(h.data(), invalid.data(), n)) return;  // all dropouts: no segment
-  const std::size_t spikes = mark_spikes(h.data(), invalid.data(), n, opt.spike_threshold);
+  if (!interpolate_invalid(h.data(), dropout.data(), h.size())) return;  // all dropouts: no segment
+  ResampledProfile p = standard_samples(h, dropout, dx, opt, acc);
+  const std::size_t n = p.h.size();
+  acc.spacing = p.spacing;
+  std::vector<unsigned char> spike(n, 0);
+  const std::size_t spikes = opt.spike_alpha > 0 ? mark_spikes(p.h.data(), spike.data(), n, p.spacing, opt.spike_alpha) : 0;
   acc.spikes += spikes;
-  if (spikes) interpolate_invalid(h.data(), invalid.data(), n);
-  if (opt.lowpass_wavelength > 0 && !lowpass_zero_phase(h.data(), n, dx, opt.lowpass_wavelength))
+  if (spikes && !interpolate_invalid(p.h.data(), spike.data(), n)) return;
+  if (opt.method == MpdMethod::continuous && opt.highpass_wavelength > 0)
+    butterworth_zero_phase(p.h.data(), n, p.spacing, opt.highpass_wavelength, PassBand::highpass);
+  if (opt.lowpass_wavelength > 0 &&
+      !butterworth_zero_phase(p.h.data(), n, p.spacing, opt.lowpass_wavelength, PassBand::lowpass))
     acc.lowpass_skipped = true;
 
-  std::size_t seg = static_cast<std::size_t>(std::llround(opt.baseline / dx));
+  std::size_t seg = static_cast<std::size_t>(std::llround(opt.baseline / p.spacing));
   if (seg < 2 || seg > n) {  // shorter than the baseline: one segment over the available length
     seg = n - n % 2;
     acc.short_baseline = true;
+    if (seg < 2) return;
   }
-  const double used = double(seg) * dx;
+  const double used = double(seg) * p.spacing;
   acc.shortest_baseline = acc.shortest_baseline == 0 ? used : std::min(acc.shortest_baseline, used);
   for (std::size_t s0 = 0; s0 + seg <= n; s0 += seg) {
     ++acc.segments;
-    std::size_t bad = 0;
-    for (std::size_t i = s0; i < s0 + seg; ++i) bad += invalid[i] != 0;
-    if (double(bad) > opt.max_invalid_fraction * double(seg)) {
+    std::size_t raw = 0, dropped = 0, spiked = 0;
+    for (std::size_t i = s0; i < s0 + seg; ++i) {
+      raw += p.raw[i];
+      dropped += p.dropouts[i];
+      spiked += spike[i] != 0;
+    }
+    if (double(dropped) > opt.max_dropout_fraction * double(raw) ||
+        double(spiked) > opt.max_spike_fraction * double(seg)) {
       ++acc.invalid_segments;
       continue;
     }
-    acc.msd.push_back(mean_segment_depth(h.data() + s0, seg));
+    acc.msd.push_back(mean_segment_depth(p.h.data() + s0, seg, opt.method == MpdMethod::spot));
   }
 }
 
@@ -63,9 +102,11 @@ MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt) {
   r.segments = acc.segments;
   r.valid_segments = acc.msd.size();
   r.spikes = acc.spikes;
+  r.spacing = acc.spacing;
   r.standard_baseline = !acc.short_baseline;
   r.baseline_used = acc.short_baseline ? acc.shortest_baseline : opt.baseline;
   r.lowpass_applied = opt.lowpass_wavelength > 0 && !acc.lowpass_skipped;
+  r.valid = 2 * r.valid_segments >= r.segments && r.valid_segments > 0;  // clause 7.10
   if (acc.msd.empty()) {
     r.mpd = r.mpd_std = NAN;
     r.note = "no valid segment";
@@ -77,14 +118,17 @@ MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt) {
   double s2 = 0;
   for (double v : acc.msd) s2 += (v - r.mpd) * (v - r.mpd);
   r.mpd_std = acc.msd.size() > 1 ? std::sqrt(s2 / double(acc.msd.size() - 1)) : 0.0;
-  char buf[200];
+  const auto flag = [&](const std::string& what) { r.note += (r.note.empty() ? "" : "; ") + what; };
   if (acc.short_baseline) {
+    char buf[200];
     std::snprintf(buf, sizeof buf,
                   "non-standard baseline: profiles shorter than %.0f mm, mean segment depth on %.1f mm",
                   opt.baseline * 1e3, r.baseline_used * 1e3);
-    r.note = buf;
+    flag(buf);
   }
-  if (acc.lowpass_skipped) r.note += std::string(r.note.empty() ? "" : "; ") + "sampling too coarse for the 2.5 mm low-pass";
+  if (!r.valid) flag("fewer than half the segments valid: not a valid MPD (ISO 13473-1 clause 7.10)");
+  if (acc.coarse_sampling) flag("sampled coarser than the standard's 1 mm");
+  if (acc.lowpass_skipped) flag("sampling too coarse for the low-pass");
   return r;
 }
 
@@ -95,6 +139,8 @@ void merge(MpdAccumulator& acc, const MpdAccumulator& o) {
   acc.spikes += o.spikes;
   acc.profiles += o.profiles;
   acc.lowpass_skipped = acc.lowpass_skipped || o.lowpass_skipped;
+  acc.coarse_sampling = acc.coarse_sampling || o.coarse_sampling;
+  if (o.spacing > 0) acc.spacing = o.spacing;
   acc.short_baseline = acc.short_baseline || o.short_baseline;
   if (o.shortest_baseline > 0)
     acc.shortest_baseline =
@@ -106,7 +152,7 @@ MpdResult mpd_of_map(const HeightMap& map, const std::vector<unsigned char>& dro
   // Profiles 0..ny-1 are the rows; ny..ny+nx-1 the columns (maps only).
   const std::size_t n_profiles = map.ny + (map.is_profile() ? 0 : map.nx);
   const std::size_t chunks = default_chunks(n_profiles);
-  std::vector<MpdAccumulator> part(chunks);
+  std::vector<MpdAccumulator> rows(chunks), columns(chunks);
   parallel_chunks(n_profiles, chunks, threads, [&](std::size_t c, std::size_t p0, std::size_t p1) {
     std::vector<double> line;
     std::vector<unsigned char> bad;
@@ -114,7 +160,7 @@ MpdResult mpd_of_map(const HeightMap& map, const std::vector<unsigned char>& dro
       if (k < map.ny) {
         line.assign(map.h.begin() + k * map.nx, map.h.begin() + (k + 1) * map.nx);
         bad.assign(dropout.begin() + k * map.nx, dropout.begin() + (k + 1) * map.nx);
-        add_profile_segments(line, bad, map.dx, opt, part[c]);
+        add_profile_segments(line, bad, map.dx, opt, rows[c]);
       } else {
         const std::size_t ix = k - map.ny;
         line.resize(map.ny);
@@ -123,13 +169,21 @@ MpdResult mpd_of_map(const HeightMap& map, const std::vector<unsigned char>& dro
           line[iy] = map(ix, iy);
           bad[iy] = dropout[iy * map.nx + ix];
         }
-        add_profile_segments(line, bad, map.dy, opt, part[c]);
+        add_profile_segments(line, bad, map.dy, opt, columns[c]);
       }
     }
   });
-  MpdAccumulator acc;
-  for (const auto& p : part) merge(acc, p);
-  return summarize(acc, opt);
+  MpdAccumulator x, y;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    merge(x, rows[c]);
+    merge(y, columns[c]);
+  }
+  MpdAccumulator all = x;
+  merge(all, y);
+  MpdResult r = summarize(all, opt);
+  r.mpd_x = summarize(x, opt).mpd;
+  if (!map.is_profile()) r.mpd_y = summarize(y, opt).mpd;
+  return r;
 }
 
 }  // namespace wr

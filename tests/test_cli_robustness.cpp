@@ -157,6 +157,10 @@ TEST_F(Robust, SmallerDefects) {
   // Heights far beyond a road's: a unit left out.
   make_h5("huge.h5", "/height", {8, 8}, 1e-4, true, 1e296);
   expect_refused("analyze " + path("huge.h5"), "not a road texture");
+  // The MPD options of ISO 13473-1, refused by name.
+  expect_refused("analyze " + a + " --spike-alpha -1", "--spike-alpha");
+  expect_refused("analyze " + a + " --lowpass -1", "--lowpass");
+  expect_refused("analyze " + a + " --mpd-method sideways", "--mpd-method");
   // A map of 99 % dropouts is analysed, with a warning.
   {
     const hsize_t dims[2] = {32, 32};

@@ -67,6 +67,7 @@ TEST(Mpd, PipelineOverSegmentsWithoutLowPass) {
   h.insert(h.end(), 60, 9e-3);  // tail: a huge bump that would change the answer if used
   MpdOptions opt;
   opt.lowpass_wavelength = 0;
+  opt.spike_alpha = 0;  // the plateaus' 2-4 mm steps would be Annex E spikes at 0.5 mm
   MpdAccumulator acc;
   add_profile_segments(h, std::vector<unsigned char>(h.size(), 0), dx, opt, acc);
   const MpdResult r = summarize(acc, opt);
@@ -87,6 +88,7 @@ TEST(Mpd, SegmentWithTooManyDropoutsIsInvalid) {
   for (std::size_t i = 250; i < 250 + 25; ++i) bad[i] = 1;  // 12.5% of segment 2
   MpdOptions opt;
   opt.lowpass_wavelength = 0;
+  opt.spike_alpha = 0;
   MpdAccumulator acc;
   add_profile_segments(h, bad, dx, opt, acc);
   const MpdResult r = summarize(acc, opt);
@@ -115,6 +117,7 @@ TEST(Mpd, ShortProfileIsFlaggedNonStandard) {
   const auto h = symmetric_segment(300, 10, 1e-3, 30);  // 30 mm at 0.1 mm
   MpdOptions opt;
   opt.lowpass_wavelength = 0;
+  opt.resample = false;  // the raw 0.1 mm samples, as the hand answer counts them
   MpdAccumulator acc;
   add_profile_segments(h, std::vector<unsigned char>(h.size(), 0), 1e-4, opt, acc);
   const MpdResult r = summarize(acc, opt);
@@ -126,26 +129,36 @@ TEST(Mpd, ShortProfileIsFlaggedNonStandard) {
 
 TEST(Mpd, EtdFormula) { EXPECT_NEAR(estimated_texture_depth(1e-3), 1.0e-3, 1e-15); }
 
-TEST(ProfileFilters, LowPassAmplitudeResponseAndZeroPhase) {
-  const double dx = 0.1e-3, lc = 2.5e-3;
-  const std::size_t n = 20000;
-  for (double lambda : {1.25e-3, 2.5e-3, 5e-3, 20e-3}) {
+// Annex D: each pass is -3 dB at its cut-off (gain 1 / sqrt(2)); forward and backward the
+// phase is zero and the gain squared, so the zero-phase filter is -6 dB there. Measured on
+// sinusoids at the standard's spacing and cut-offs (2.4 mm low-pass, 174.2 mm high-pass).
+TEST(ProfileFilters, ButterworthGainsAndZeroPhase) {
+  const double dx = 0.5e-3;
+  EXPECT_NEAR(butterworth_gain(dx, 2.4e-3, 2.4e-3, PassBand::lowpass), 1 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(butterworth_gain(dx, 174.2e-3, 174.2e-3, PassBand::highpass), 1 / std::sqrt(2.0), 1e-12);
+  struct Case {
+    PassBand band;
+    double cutoff, lambda;
+  };
+  const std::size_t n = 40000;  // 20 m
+  for (const Case& c : {Case{PassBand::lowpass, 2.4e-3, 1.5e-3}, Case{PassBand::lowpass, 2.4e-3, 2.4e-3},
+                        Case{PassBand::lowpass, 2.4e-3, 5e-3}, Case{PassBand::highpass, 174.2e-3, 100e-3},
+                        Case{PassBand::highpass, 174.2e-3, 174.2e-3}, Case{PassBand::highpass, 174.2e-3, 400e-3}}) {
     std::vector<double> h(n);
-    for (std::size_t i = 0; i < n; ++i) h[i] = std::sin(2 * kPi * i * dx / lambda);
-    ASSERT_TRUE(lowpass_zero_phase(h.data(), n, dx, lc));
+    for (std::size_t i = 0; i < n; ++i) h[i] = std::sin(2 * kPi * double(i) * dx / c.lambda);
+    ASSERT_TRUE(butterworth_zero_phase(h.data(), n, dx, c.cutoff, c.band));
     // Project the middle onto sin and cos: the cos part is the phase error.
-    double s = 0, c = 0, norm = 0;
+    double s = 0, co = 0, norm = 0;
     for (std::size_t i = n / 4; i < 3 * n / 4; ++i) {
-      const double arg = 2 * kPi * i * dx / lambda;
+      const double arg = 2 * kPi * double(i) * dx / c.lambda;
       s += h[i] * std::sin(arg);
-      c += h[i] * std::cos(arg);
+      co += h[i] * std::cos(arg);
       norm += std::sin(arg) * std::sin(arg);
     }
-    // Bilinear warping: the digital response is that of tan(pi dx / lambda) over tan(pi dx / lc).
-    const double ratio = std::tan(kPi * dx / lambda) / std::tan(kPi * dx / lc);
-    const double expected = 1.0 / (1.0 + std::pow(ratio, 4));
-    EXPECT_NEAR(s / norm, expected, 2e-3) << "lambda " << lambda;
-    EXPECT_NEAR(c / norm, 0.0, 2e-3) << "lambda " << lambda;
+    const double g = butterworth_gain(dx, c.cutoff, c.lambda, c.band);
+    EXPECT_NEAR(s / norm, g * g, 2e-3) << "lambda " << c.lambda;
+    EXPECT_NEAR(co / norm, 0.0, 2e-3) << "lambda " << c.lambda;
+    if (c.lambda == c.cutoff) EXPECT_NEAR(20 * std::log10(s / norm), -6.02, 0.05);
   }
 }
 
@@ -153,28 +166,139 @@ TEST(ProfileFilters, LowPassKeepsLinesExactly) {
   std::vector<double> h(5000);
   for (std::size_t i = 0; i < h.size(); ++i) h[i] = 3e-3 - 2e-6 * double(i);
   const auto orig = h;
-  ASSERT_TRUE(lowpass_zero_phase(h.data(), h.size(), 1e-4, 2.5e-3));
+  ASSERT_TRUE(butterworth_zero_phase(h.data(), h.size(), 5e-4, 2.4e-3, PassBand::lowpass));
   for (std::size_t i = 0; i < h.size(); ++i) EXPECT_NEAR(h[i], orig[i], 1e-12);
 }
 
 TEST(ProfileFilters, LowPassRefusesCoarseSampling) {
   std::vector<double> h(100, 1.0);
-  EXPECT_FALSE(lowpass_zero_phase(h.data(), h.size(), 1.5e-3, 2.5e-3));
+  EXPECT_FALSE(butterworth_zero_phase(h.data(), h.size(), 1.5e-3, 2.4e-3, PassBand::lowpass));
 }
 
-TEST(ProfileFilters, SingleSampleSpikeIsFoundAndRemoved) {
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> g(0, 1e-5);
-  std::vector<double> h(4000);
-  double acc = 0;
-  for (double& v : h) v = (acc += g(rng));  // smooth-ish random walk texture
-  const double original = h[1234];
-  h[1234] += 5e-3;
-  std::vector<unsigned char> bad(h.size(), 0);
-  EXPECT_EQ(mark_spikes(h.data(), bad.data(), h.size(), 0.0), 1u);
-  EXPECT_TRUE(bad[1234]);
-  interpolate_invalid(h.data(), bad.data(), h.size());
-  EXPECT_NEAR(h[1234], original, 1e-4);
+// Clause 7.3 by hand: linear inside, the nearest valid value held at the ends.
+TEST(ProfileFilters, DropoutsAreInterpolatedAndHeldAtTheEnds) {
+  std::vector<double> h{NAN, 0.1, NAN, 0.4, NAN};
+  const std::vector<unsigned char> bad{1, 0, 1, 0, 1};
+  ASSERT_TRUE(interpolate_invalid(h.data(), bad.data(), h.size()));
+  const std::vector<double> expected{0.1, 0.1, 0.25, 0.4, 0.4};
+  for (std::size_t i = 0; i < h.size(); ++i) EXPECT_NEAR(h[i], expected[i], 1e-15) << i;
+}
+
+// Clause 7.4 by hand: raw samples every 0.25 at x = 0 ... 2.5, resampled to 0.5. Bin k holds
+// x in ((k - 1) 0.5, k 0.5], the first also x = 0: means 0.2, 0.15, 0.15, 0, 0.3.
+TEST(ProfileFilters, ResamplingAveragesTheRawSamplesOfEachBin) {
+  const std::vector<double> h{0.3, 0.1, 0.2, 0.2, 0.1, 0.2, 0.1, -0.1, 0.1, 0.1, 0.5};
+  std::vector<unsigned char> drop(h.size(), 0);
+  drop[7] = 1;
+  const ResampledProfile r = resample_bin_average(h.data(), drop.data(), h.size(), 0.25, 0.5);
+  const std::vector<double> expected{0.2, 0.15, 0.15, 0.0, 0.3};
+  ASSERT_EQ(r.h.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(r.h[k], expected[k], 1e-15) << k;
+  EXPECT_EQ(r.raw, (std::vector<unsigned>{3, 2, 2, 2, 2}));
+  EXPECT_EQ(r.dropouts, (std::vector<unsigned>{0, 0, 0, 1, 0}));
+}
+
+// Annex E by hand (spacing 0.1, alpha 3: neighbours 0.3 apart or more are both flagged), then
+// interpolated like dropouts.
+TEST(ProfileFilters, SpikesFlagBothNeighboursAndAreInterpolated) {
+  struct Case {
+    std::vector<double> in, out;
+  };
+  for (const Case& c : {Case{{0.1, 0, 0.3, 0, 0.1}, {0.1, 0.1, 0.1, 0.1, 0.1}},
+                        Case{{0.3, 0, 0.1, 0, 0.3}, {0.1, 0.1, 0.1, 0.1, 0.1}},
+                        Case{{0.3, 0, 0.2, 0, 0.3, 0, -0.2, 0, 0.3}, {0.2, 0.2, 0.2, 0.1, 0, -0.1, -0.2, -0.2, -0.2}}}) {
+    std::vector<double> h = c.in;
+    std::vector<unsigned char> bad(h.size(), 0);
+    EXPECT_GT(mark_spikes(h.data(), bad.data(), h.size(), 0.1, 3.0), 0u);
+    ASSERT_TRUE(interpolate_invalid(h.data(), bad.data(), h.size()));
+    for (std::size_t i = 0; i < h.size(); ++i) EXPECT_NEAR(h[i], c.out[i], 1e-15) << i;
+  }
+}
+
+// The whole pipeline, filters off, by hand: a square wave of +-a (period 10 mm) sampled every
+// 0.1 mm with its levels constant over each 0.5 mm bin, so the bin averages are the wave
+// itself; three 100 mm segments and a tail. Without slope suppression (continuous method, no
+// high-pass) each half's peak is a and the mean 0: MSD = MPD = a. One raw sample spiked flags
+// three resampled samples (1.5 % of its segment, valid) and is interpolated away; ten spikes in
+// the second segment (15 %) make it invalid, and 4 % raw dropouts inside a plateau of the third
+// (interpolated, under the 10 % rule) leave it valid.
+TEST(Mpd, SquareWaveThroughEveryStepByHand) {
+  const double a = 0.5e-3, dx = 0.1e-3, spacing = 0.5e-3;
+  const std::size_t n = 3200;  // 320 mm: three segments and a 20 mm tail
+  std::vector<double> h(n);
+  std::vector<unsigned char> drop(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t bin = std::max<std::size_t>(1, std::size_t(std::ceil(double(i) * dx / spacing - 1e-9)));
+    h[i] = ((bin - 1) / 10) % 2 == 0 ? a : -a;
+  }
+  // A 25 mm raw spike is 5 mm in its bin's average: all inside plateaus, so that the
+  // interpolation across the three flagged bins restores the wave exactly.
+  h[473] += 25e-3;                                                      // segment 1, bin 95
+  for (std::size_t k = 0; k < 10; ++k) h[1000 + 50 * k + 20] += 25e-3;  // segment 2: 10 spikes
+  for (std::size_t i = 2105; i < 2145; ++i) drop[i] = 1;                // segment 3: 40 of 1000 raw
+  MpdOptions opt;
+  opt.method = MpdMethod::continuous;
+  opt.highpass_wavelength = 0;
+  opt.lowpass_wavelength = 0;
+  MpdAccumulator acc;
+  add_profile_segments(h, drop, dx, opt, acc);
+  const MpdResult r = summarize(acc, opt);
+  EXPECT_NEAR(r.spacing, spacing, 1e-15);
+  EXPECT_EQ(r.spikes, 33u);
+  EXPECT_EQ(r.segments, 3u);
+  EXPECT_EQ(r.valid_segments, 2u);
+  EXPECT_TRUE(r.valid);
+  EXPECT_NEAR(r.mpd, a, 1e-15);
+  EXPECT_NEAR(r.mpd_std, 0.0, 1e-15);
+}
+
+// Slope suppression (spot method) by hand: a sawtooth of period 10 mm (teeth f_j = A (j / 20 -
+// 1/2), j = 0 ... 19) on a 2 % grade, sampled at the standard's 0.5 mm, two segments of ten
+// teeth, 10 dropouts (5 %) inside one tooth's rise. The grade is removed exactly; over the
+// segment's samples i = 0 ... 199 (centre c = 99.5) the teeth's own least-squares slope is
+// b = sum (i - c) f_i / sum (i - c)^2 = 332.5 A / 666650 and their mean -A / 40. Each half's
+// highest residual is at its first tooth top (i = 19 and 119, f = 0.45 A):
+// MSD = 0.45 A + A / 40 + b (80.5 - 19.5) / 2 = 0.475 A + 30.5 b.
+TEST(Mpd, SawtoothOnAGradeWithDropoutsBySlopeSuppression) {
+  const double A = 1e-3, dx = 0.5e-3;
+  const std::size_t n = 400;
+  std::vector<double> h(n);
+  for (std::size_t i = 0; i < n; ++i) h[i] = A * (double(i % 20) / 20.0 - 0.5) + 0.02 * double(i) * dx;
+  std::vector<unsigned char> drop(n, 0);
+  for (std::size_t i = 205; i < 215; ++i) {  // inside one tooth's rise: linear, restored exactly
+    drop[i] = 1;
+    h[i] = NAN;
+  }
+  MpdOptions opt;
+  opt.lowpass_wavelength = 0;  // the teeth's 1 mm drops stay under Annex E's 1.5 mm
+  MpdAccumulator acc;
+  add_profile_segments(h, drop, dx, opt, acc);
+  const MpdResult r = summarize(acc, opt);
+  EXPECT_EQ(r.spikes, 0u);
+  ASSERT_EQ(r.valid_segments, 2u);
+  EXPECT_NEAR(r.mpd, 0.475 * A + 30.5 * 332.5 * A / 666650, 1e-14);
+  EXPECT_NEAR(r.mpd_std, 0.0, 1e-14);
+}
+
+// A map's rows and columns are reported apart (as a CTMeter does) and together.
+TEST(Mpd, MapReportsAlongXAndAlongYApart) {
+  // Rows carry a 0.5 mm square wave along x, columns are flat along y except for that pattern
+  // (each column constant): MPD along y is 0, along x is a.
+  HeightMap m;
+  m.nx = m.ny = 220;  // 110 mm at 0.5 mm: one segment each way
+  m.dx = m.dy = 0.5e-3;
+  m.h.resize(m.nx * m.ny);
+  const double a = 0.5e-3;
+  for (std::size_t iy = 0; iy < m.ny; ++iy)
+    for (std::size_t ix = 0; ix < m.nx; ++ix) m.h[iy * m.nx + ix] = (ix / 10) % 2 == 0 ? a : -a;
+  MpdOptions opt;
+  opt.method = MpdMethod::continuous;
+  opt.highpass_wavelength = 0;
+  opt.lowpass_wavelength = 0;
+  const MpdResult r = mpd_of_map(m, std::vector<unsigned char>(m.h.size(), 0), opt, 1);
+  EXPECT_NEAR(r.mpd_x, a, 1e-15);
+  EXPECT_NEAR(r.mpd_y, 0.0, 1e-15);
+  EXPECT_NEAR(r.mpd, a / 2, 1e-15);
 }
 
 TEST(ExpectedMpd, ProfilePsdIntegratesToTheSurfaceVariance) {
