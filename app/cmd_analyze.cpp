@@ -18,7 +18,7 @@ namespace {
 struct AnalyzeCli {
   std::string input, json, out, unit = "m", mpd_method = "auto";
   double dx = 0, dy = 0;
-  bool periodic = false, quiet = false, no_expected_mpd = false;
+  bool periodic = false, quiet = false, no_expected_mpd = false, keep_plates = false;
   int threads = 0;
   MpdOptions mpd;
   CLI::Option *dx_opt = nullptr, *dy_opt = nullptr;
@@ -49,6 +49,8 @@ int run_analyze(const AnalyzeCli& c) {
   // A 1-D profile is a continuous record (a laser profilometer's), a map a spot measurement.
   const bool continuous = c.mpd_method == "continuous" || (c.mpd_method == "auto" && surface.map.is_profile());
   opt.mpd.method = continuous ? MpdMethod::continuous : MpdMethod::spot;
+  // Records of laser profilometers start and end on calibration plates; maps do not.
+  opt.mpd.cut_plates = surface.map.is_profile() && !c.keep_plates;
   opt.expected_mpd = !c.no_expected_mpd;
   AnalysisReport report = analyze_surface(surface, opt);
 
@@ -63,6 +65,7 @@ int run_analyze(const AnalyzeCli& c) {
                      {"mpd_method", continuous ? "continuous" : "spot"},
                      {"resample", c.mpd.resample},
                      {"spike_alpha", c.mpd.spike_alpha},
+                     {"cut_plates", opt.mpd.cut_plates},
                      {"expected_mpd", opt.expected_mpd}};
   prov.model = "analysis";
   nlohmann::json timings = report.timer.to_json();
@@ -119,6 +122,9 @@ Command add_analyze(CLI::App& root) {
                 "MPD spikes (ISO 13473-1 Annex E): neighbours of the resampled profile differing by at least "
                 "alpha x the spacing are both dropped and interpolated; 0 = off")
       ->capture_default_str();
+  s->add_flag("--keep-plates", c->keep_plates,
+              "1-D profiles: keep flat runs at the record's ends that stand 2 mm or more off the road (calibration "
+              "plates, cut by default; maps are never cut)");
   s->add_flag("!--no-resample", c->mpd.resample,
               "MPD on the raw sampling instead of the standard's 0.5 mm (1.0 mm) bin averages (not ISO)");
   s->add_flag("--no-expected-mpd", c->no_expected_mpd,

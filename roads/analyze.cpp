@@ -188,6 +188,8 @@ nlohmann::json AnalysisReport::to_json() const {
                      {"mpd_x", num_json(mpd.mpd_x)},
                      {"mpd_y", num_json(mpd.mpd_y)},
                      {"spacing", mpd.spacing},
+                     {"plate_start", mpd.plate_start},
+                     {"plate_end", mpd.plate_end},
                      {"standard_baseline", mpd.standard_baseline},
                      {"baseline", mpd.baseline_used},
                      {"lowpass_applied", mpd.lowpass_applied},

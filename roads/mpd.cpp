@@ -6,6 +6,7 @@
 
 #include "lib/core/parallel.hpp"
 #include "roads/profile_filters.hpp"
+#include "roads/reference_plates.hpp"
 
 namespace wr {
 
@@ -57,6 +58,15 @@ ResampledProfile standard_samples(const std::vector<double>& h, const std::vecto
 void add_profile_segments(std::vector<double> h, std::vector<unsigned char> dropout, double dx,
                           const MpdOptions& opt, MpdAccumulator& acc) {
   ++acc.profiles;
+  if (opt.cut_plates) {
+    const PlateCut plates = find_reference_plates(h.data(), dropout.data(), h.size(), dx);
+    acc.plate_start += double(plates.start) * dx;
+    acc.plate_end += double(plates.end) * dx;
+    h.erase(h.end() - std::ptrdiff_t(plates.end), h.end());
+    h.erase(h.begin(), h.begin() + std::ptrdiff_t(plates.start));
+    dropout.erase(dropout.end() - std::ptrdiff_t(plates.end), dropout.end());
+    dropout.erase(dropout.begin(), dropout.begin() + std::ptrdiff_t(plates.start));
+  }
   if (!interpolate_invalid(h.data(), dropout.data(), h.size())) return;  // all dropouts: no segment
   ResampledProfile p = standard_samples(h, dropout, dx, opt, acc);
   const std::size_t n = p.h.size();
@@ -103,6 +113,8 @@ MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt) {
   r.valid_segments = acc.msd.size();
   r.spikes = acc.spikes;
   r.spacing = acc.spacing;
+  r.plate_start = acc.plate_start;
+  r.plate_end = acc.plate_end;
   r.standard_baseline = !acc.short_baseline;
   r.baseline_used = acc.short_baseline ? acc.shortest_baseline : opt.baseline;
   r.lowpass_applied = opt.lowpass_wavelength > 0 && !acc.lowpass_skipped;
@@ -128,6 +140,12 @@ MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt) {
   }
   if (!r.valid) flag("fewer than half the segments valid: not a valid MPD (ISO 13473-1 clause 7.10)");
   if (acc.coarse_sampling) flag("sampled coarser than the standard's 1 mm");
+  if (acc.plate_start > 0 || acc.plate_end > 0) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "reference plates cut: %.1f mm at the start, %.1f mm at the end",
+                  acc.plate_start * 1e3, acc.plate_end * 1e3);
+    flag(buf);
+  }
   if (acc.lowpass_skipped) flag("sampling too coarse for the low-pass");
   return r;
 }
@@ -140,6 +158,8 @@ void merge(MpdAccumulator& acc, const MpdAccumulator& o) {
   acc.profiles += o.profiles;
   acc.lowpass_skipped = acc.lowpass_skipped || o.lowpass_skipped;
   acc.coarse_sampling = acc.coarse_sampling || o.coarse_sampling;
+  acc.plate_start += o.plate_start;
+  acc.plate_end += o.plate_end;
   if (o.spacing > 0) acc.spacing = o.spacing;
   acc.short_baseline = acc.short_baseline || o.short_baseline;
   if (o.shortest_baseline > 0)

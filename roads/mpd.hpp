@@ -2,7 +2,8 @@
 // Mean profile depth after ISO 13473-1:2019 (clauses 7.3-7.10, Annexes D and E), over every row
 // and every column of a map, reported along x (rows), along y (columns) and together.
 //
-// Per profile: dropouts corrected on the raw samples (linear inside, held at the ends; 7.3);
+// Per profile: reference plates at the record's ends cut (an option, reference_plates.hpp);
+// dropouts corrected on the raw samples (linear inside, held at the ends; 7.3);
 // resampled by bin averaging to 0.5 mm, or 1.0 mm when the raw spacing is coarser (7.4);
 // spikes after Annex E (neighbours differing by 3 x the spacing or more, both flagged) and
 // interpolated; a continuous measurement is high-passed at 174.2 mm; all are low-passed at
@@ -36,6 +37,7 @@ struct MpdOptions {
   double spike_alpha = 3;               // Annex E, eq. E.1; <= 0 switches spike removal off
   double max_dropout_fraction = 0.10;   // of a segment's raw samples
   double max_spike_fraction = 0.05;     // of a segment's resampled samples
+  bool cut_plates = false;              // drop reference plates at the record's ends (reference_plates.hpp)
 };
 
 // The spacing clause 7.4 resamples to from raw spacing dx: 0.5 mm, or 1.0 mm when dx is
@@ -57,6 +59,7 @@ struct MpdAccumulator {
   bool short_baseline = false;     // some profile shorter than the baseline
   double shortest_baseline = 0;    // m, the shortest segment length used
   double spacing = 0;              // m, the (re)sampled spacing of the last profile
+  double plate_start = 0, plate_end = 0;  // m, cut as reference plates (summed over profiles)
 };
 
 // Processes one profile of n samples (a copy is modified), adding its segments to `acc`.
@@ -69,6 +72,7 @@ struct MpdResult {
   std::size_t profiles = 0, segments = 0, valid_segments = 0, spikes = 0;
   bool valid = false;   // at least half the segments valid (7.10)
   double mpd_x = NAN, mpd_y = NAN;  // m, of the rows and of the columns alone (mpd_of_map)
+  double plate_start = 0, plate_end = 0;  // m, cut as reference plates (MpdOptions::cut_plates)
   double spacing = 0;   // m, the spacing the profiles were evaluated at
   bool standard_baseline = true;
   double baseline_used = 0;  // m

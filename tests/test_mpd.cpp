@@ -8,6 +8,7 @@
 #include "roads/expected_mpd.hpp"
 #include "roads/mpd.hpp"
 #include "roads/profile_filters.hpp"
+#include "roads/reference_plates.hpp"
 
 namespace wr {
 namespace {
@@ -278,6 +279,58 @@ TEST(Mpd, SawtoothOnAGradeWithDropoutsBySlopeSuppression) {
   ASSERT_EQ(r.valid_segments, 2u);
   EXPECT_NEAR(r.mpd, 0.475 * A + 30.5 * 332.5 * A / 666650, 1e-14);
   EXPECT_NEAR(r.mpd_std, 0.0, 1e-14);
+}
+
+// A road texture: a +-0.5 mm square wave of period 10 mm, every 0.1 mm.
+std::vector<double> square_road(std::size_t n) {
+  std::vector<double> h(n);
+  for (std::size_t i = 0; i < n; ++i) h[i] = (i / 50) % 2 == 0 ? 0.5e-3 : -0.5e-3;
+  return h;
+}
+
+// Calibration plates at both ends of a record (30 mm at +20 mm with 0.1 mm of noise, 40 mm at
+// -15 mm) are found, cut with the 2 mm margin over their edges and reported; the MPD is then
+// that of the road alone with the same margins trimmed.
+TEST(ReferencePlates, PlatesAtBothEndsAreCutAndReported) {
+  const double dx = 0.1e-3;
+  const std::vector<double> road = square_road(3000);  // 300 mm
+  std::vector<double> h;
+  for (std::size_t i = 0; i < 300; ++i) h.push_back(20e-3 + (i % 3 == 0 ? 0.1e-3 : 0.0));
+  h.insert(h.end(), road.begin(), road.end());
+  h.insert(h.end(), 400, -15e-3);
+  std::vector<unsigned char> drop(h.size(), 0);
+  drop[100] = 1;  // a dropout on the plate does not end it
+  const PlateCut cut = find_reference_plates(h.data(), drop.data(), h.size(), dx);
+  EXPECT_EQ(cut.start, 300u + 20u);
+  EXPECT_EQ(cut.end, 400u + 20u);
+
+  MpdOptions opt;
+  opt.cut_plates = true;
+  MpdAccumulator with, bare;
+  add_profile_segments(h, drop, dx, opt, with);
+  const MpdResult r = summarize(with, opt);
+  EXPECT_NEAR(r.plate_start, 32e-3, 1e-12);
+  EXPECT_NEAR(r.plate_end, 42e-3, 1e-12);
+  EXPECT_NE(r.note.find("reference plates cut: 32.0 mm at the start, 42.0 mm at the end"), std::string::npos) << r.note;
+  const std::vector<double> trimmed(road.begin() + 20, road.end() - 20);
+  add_profile_segments(trimmed, std::vector<unsigned char>(trimmed.size(), 0), dx, opt, bare);
+  EXPECT_EQ(summarize(bare, opt).plate_start, 0.0);
+  EXPECT_NEAR(r.mpd, summarize(bare, opt).mpd, 1e-15);
+}
+
+// A road that starts on a flat stretch at its own level, or a record flat throughout, is not cut.
+TEST(ReferencePlates, FlatRoadAtItsOwnLevelIsNotAPlate) {
+  const double dx = 0.1e-3;
+  std::vector<double> h(200, 0.2e-3);  // 20 mm flat, 0.2 mm off the road's median: no step
+  const std::vector<double> road = square_road(3000);
+  h.insert(h.end(), road.begin(), road.end());
+  const std::vector<unsigned char> drop(h.size(), 0);
+  const PlateCut cut = find_reference_plates(h.data(), drop.data(), h.size(), dx);
+  EXPECT_EQ(cut.start, 0u);
+  EXPECT_EQ(cut.end, 0u);
+  const std::vector<double> flat(2000, 1e-3);
+  const PlateCut none = find_reference_plates(flat.data(), drop.data(), flat.size(), dx);
+  EXPECT_EQ(none.start + none.end, 0u);
 }
 
 // A map's rows and columns are reported apart (as a CTMeter does) and together.
