@@ -15,7 +15,8 @@ bool interpolate_invalid(double* h, const unsigned char* invalid, std::size_t n)
 
 // A profile resampled to `spacing` (clause 7.4): output sample k (k = 1, 2, ...) at k x spacing
 // from the first raw sample is the mean of the raw samples at distances in ((k - 1) spacing,
-// k spacing], the first bin also taking the sample at 0. Only whole bins are kept. `raw` counts
+// k spacing], the first bin also taking the sample at 0. Every bin that holds a raw sample is
+// kept, the last one possibly partly covered (as the reference implementations have it). `raw` counts
 // the raw samples of each bin and `dropouts` those of them that were dropouts before
 // correction (the segment validity rule counts raw dropouts). Raw samples must be corrected
 // already (interpolate_invalid). Requires spacing >= dx > 0.
@@ -39,8 +40,9 @@ enum class PassBand { lowpass, highpass };
 // 1 / sqrt(2), -3 dB, at cutoff_wavelength for one pass) run forward then backward, so the
 // phase is zero and the gain is that of one pass squared: 1 / (1 + r^4) for the low-pass and
 // r^4 / (1 + r^4) for the high-pass, r = tan(pi dx / lambda) / tan(pi dx / cutoff), i.e. -6 dB
-// at the cut-off. Ends are padded by odd reflection and the filter starts in steady state, so
-// the low-pass keeps a constant or a straight line unchanged. Returns false (h unchanged) when
+// at the cut-off. Ends are padded by odd reflection over 9 samples and the filter starts in the
+// steady state of the first padded value, as the reference implementations do (SciPy's and
+// MATLAB's filtfilt): a constant passes the low-pass unchanged. Returns false (h unchanged) when
 // the cut-off lies above 0.9 of the Nyquist frequency: the sampling is too coarse to filter.
 bool butterworth_zero_phase(double* h, std::size_t n, double dx, double cutoff_wavelength, PassBand band);
 
