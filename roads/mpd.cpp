@@ -140,6 +140,7 @@ MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt) {
   }
   if (!r.valid) flag("fewer than half the segments valid: not a valid MPD (ISO 13473-1 clause 7.10)");
   if (acc.coarse_sampling) flag("sampled coarser than the standard's 1 mm");
+  if (!opt.resample) flag("raw sampling kept: not resampled as ISO 13473-1 clause 7.4 asks");
   if (acc.plate_start > 0 || acc.plate_end > 0) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "reference plates cut: %.1f mm at the start, %.1f mm at the end",

@@ -125,6 +125,7 @@ TEST(Mpd, ShortProfileIsFlaggedNonStandard) {
   EXPECT_FALSE(r.standard_baseline);
   EXPECT_NEAR(r.baseline_used, 0.030, 1e-12);
   EXPECT_NE(r.note.find("non-standard baseline"), std::string::npos);
+  EXPECT_NE(r.note.find("not resampled"), std::string::npos);
   EXPECT_NEAR(r.mpd, 1e-3 - 2 * 10 * 1e-3 / 300, 1e-15);
 }
 
