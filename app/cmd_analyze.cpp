@@ -18,10 +18,11 @@ namespace {
 struct AnalyzeCli {
   std::string input, json, out, unit = "m", mpd_method = "auto";
   double dx = 0, dy = 0;
-  bool periodic = false, quiet = false, no_expected_mpd = false, keep_plates = false;
+  bool periodic = false, quiet = false, no_expected_mpd = false, keep_plates = false, points = false;
+  double max_gap = 0;
   int threads = 0;
   MpdOptions mpd;
-  CLI::Option *dx_opt = nullptr, *dy_opt = nullptr;
+  CLI::Option *dx_opt = nullptr, *dy_opt = nullptr, *max_gap_opt = nullptr;
 };
 
 int run_analyze(const AnalyzeCli& c) {
@@ -39,9 +40,15 @@ int run_analyze(const AnalyzeCli& c) {
   if (c.dy_opt->count()) text.dy = c.dy;
   text.unit_scale = unit_scale(c.unit, "--unit");
   text.periodic = c.periodic;
+  text.points = c.points;
+  if (c.max_gap_opt->count()) {
+    if (!c.points) throw InputError("--max-gap", "applies to point clouds only (add --points)");
+    text.max_gap = c.max_gap;
+  }
   const LoadedSurface surface = load_surface(c.input, text);
   io.stop();
   print_load_warnings(surface);  // also under -q: they are about the data
+  if (!c.quiet) std::printf("read %s\n  %s\n\n", c.input.c_str(), describe_import(surface).c_str());
 
   AnalysisOptions opt;
   opt.threads = c.threads;
@@ -58,7 +65,7 @@ int run_analyze(const AnalyzeCli& c) {
   write.start("write");
   Provenance prov;
   prov.command = "analyze";
-  prov.inputs = {{"surface", c.input}, {"format", surface.format}};
+  prov.inputs = {{"surface", c.input}, {"format", surface.format}, {"read", describe_import(surface)}};
   prov.parameters = {{"baseline", c.mpd.baseline},
                      {"lowpass_wavelength", c.mpd.lowpass_wavelength},
                      {"highpass_wavelength", opt.mpd.method == MpdMethod::continuous ? c.mpd.highpass_wavelength : 0.0},
@@ -67,6 +74,7 @@ int run_analyze(const AnalyzeCli& c) {
                      {"spike_alpha", c.mpd.spike_alpha},
                      {"cut_plates", opt.mpd.cut_plates},
                      {"expected_mpd", opt.expected_mpd}};
+  if (c.points) prov.parameters["max_gap"] = c.max_gap_opt->count() ? nlohmann::json(c.max_gap) : nlohmann::json("auto");
   prov.model = "analysis";
   nlohmann::json timings = report.timer.to_json();
   timings["read"] = io.seconds("read");
@@ -99,15 +107,23 @@ Command add_analyze(CLI::App& root) {
       "plateau, roll-off q0 and Hurst exponent; summits against Nayak (eq. 3.69, 4.5); MPD after\n"
       "ISO 13473-1 over every row and column, ETD; Persson/BGT low-pressure kappa and Persson's\n"
       "A/A0. For a file made by `synth` the prescribed values stand beside the measured ones.\n"
-      "Input: HDF5 (/height 2-D with dx, dy attributes in m, or /profile 1-D with dx) or a\n"
-      "plain-text grid (whitespace/comma separated, rows = y; needs --dx). NaN = dropout.\n"
-      "Example: wetroad analyze road.h5 --json road.json --out road-analysis.h5");
-  s->add_option("file", c->input, "surface file (HDF5 or text grid)")->required();
+      "Input: HDF5 (/height 2-D with dx, dy attributes in m, or /profile 1-D with dx); X3P (ISO\n"
+      "25178-72: SUR maps, PRF profiles, data types I/L/F/D, checksums verified); a plain-text grid\n"
+      "(whitespace/comma separated, rows = y; needs --dx); or with --points an x y z point cloud\n"
+      "(one point per line), triangulated (CGAL Delaunay) and interpolated linearly onto a --dx grid,\n"
+      "triangles longer than --max-gap left as dropouts. NaN or invalid points = dropouts.\n"
+      "Example: wetroad analyze road.h5 --json road.json --out road-analysis.h5\n"
+      "         wetroad analyze scan.xyz --points --unit mm --dx 2e-4");
+  s->add_option("file", c->input, "surface file (HDF5, X3P, text grid or, with --points, a point cloud)")->required();
   s->add_option("--json", c->json, "write the summary as JSON (SI units; keys in docs/file-formats.md)");
   s->add_option("--out", c->out, "write the summary, the radial PSD (/psd/q, /psd/C) and summit heights to HDF5");
-  c->dx_opt = s->add_option("--dx", c->dx, "text grids: sample spacing along x in m (required for text)");
+  c->dx_opt = s->add_option("--dx", c->dx, "text grids: sample spacing along x in m; point clouds: the grid's (required for text)");
   c->dy_opt = s->add_option("--dy", c->dy, "text grids: spacing along y in m (default: --dx)");
-  s->add_option("--unit", c->unit, "text grids: unit of the heights: m, mm, um, nm (default m)");
+  s->add_option("--unit", c->unit, "text grids: unit of the heights; point clouds: of x, y and z: m, mm, um, nm (default m)");
+  s->add_flag("--points", c->points, "the text file holds x y z points (a point cloud; needs --dx, the grid spacing)");
+  c->max_gap_opt = s->add_option("--max-gap", c->max_gap,
+                                 "point clouds: triangles with a longer edge (m) are not interpolated but left as dropouts "
+                                 "(default: 5 x the mean point spacing)");
   s->add_flag("--periodic", c->periodic, "text grids: the data wraps around (default: not periodic)");
   s->add_option("--baseline", c->mpd.baseline, "MPD segment length in m (ISO 13473-1: 0.1)")->capture_default_str();
   s->add_option("--lowpass", c->mpd.lowpass_wavelength,

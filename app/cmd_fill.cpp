@@ -9,7 +9,9 @@
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/io/output_set.hpp"
+#include "roads/surface_file.hpp"
 #include "roads/surface_import.hpp"
+#include "roads/x3p_file.hpp"
 #include "water/rain_fill.hpp"
 #include "water/water_file.hpp"
 
@@ -17,7 +19,7 @@ namespace wr::app {
 namespace {
 
 struct FillCli {
-  std::string input, output, json, tiling = "torus", rule = "fsm";
+  std::string input, output, json, tiling = "torus", rule = "fsm", format = "auto";
   double rain = 0, coverage = 0, dmax = 0;
   bool limit = false, stagnant = false, quiet = false;
   int connectivity = 4;
@@ -52,6 +54,7 @@ nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlo
 
 int run_fill(const FillCli& c) {
   const FillRequest req = make_request(c);
+  const SurfaceFormat format = output_format(c.output, c.format);
   OutputSet outputs;
   outputs.input(c.input);
   const std::string out_path = outputs.add("--output", c.output), json_path = outputs.add("--json", c.json);
@@ -104,7 +107,14 @@ int run_fill(const FillCli& c) {
   prov.timings = timings;
   j["provenance"] = prov.to_json();
   timer.start("write");
-  write_water_file(out_path, s.map, w, j, prov.to_json());
+  if (format == SurfaceFormat::x3p) {
+    // X3P holds one height field: the wet surface (ground or water level, what a tyre meets).
+    HeightMap wet = s.map;
+    wet.h = w.level;
+    write_x3p(out_path, wet, "fill", {{"summary", j}, {"provenance", prov.to_json()}});
+  } else {
+    write_water_file(out_path, s.map, w, j, prov.to_json());
+  }
   if (!c.json.empty()) write_text_atomically(json_path, j.dump(2) + "\n");
   outputs.commit();
   timer.stop();
@@ -142,8 +152,11 @@ Command add_fill(CLI::App& root) {
       "flooded surface. --tiling 3x3 reproduces the thesis's method and reports where it differs from the\n"
       "exact answer. Output HDF5: /height (wet surface), /water_depth, /ground.\n"
       "Example: wetroad fill road.h5 --coverage 0.3 -o wet.h5 --json wet.json");
-  s->add_option("surface", c->input, "periodic surface file (HDF5 /height, e.g. from synth)")->required();
-  s->add_option("-o,--output", c->output, "output HDF5 file (written atomically)")->required();
+  s->add_option("surface", c->input, "periodic surface file (HDF5 /height or X3P, e.g. from synth)")->required();
+  s->add_option("-o,--output", c->output, "output file (written atomically): HDF5, or X3P of the wet surface")->required();
+  s->add_option("--format", c->format,
+                "hdf5 (/height, /water_depth, /ground) or x3p (the wet surface only); auto: x3p for a .x3p name")
+      ->capture_default_str();
   c->rain_opt = s->add_option("--rain", c->rain, "rain depth in m of water per projected area");
   c->coverage_opt = s->add_option("--coverage", c->coverage,
                                   "target water coverage in (0, 1]: finds the rain depth by bisection");

@@ -21,7 +21,7 @@ namespace wr::app {
 namespace {
 
 struct SynthCli {
-  std::string output, json;
+  std::string output, json, format = "auto";
   SynthOptions surface;
   bool quiet = false;
 };
@@ -30,6 +30,7 @@ int run_synth(const SynthCli& c) {
   OutputSet outputs;
   if (!c.surface.scene.empty()) outputs.input(scene_path(c.surface.scene));
   const std::string out_path = outputs.add("--output", c.output), json_path = outputs.add("--json", c.json);
+  const SurfaceFormat format = output_format(c.output, c.format);
   const SynthParams p = resolve_synth_options(c.surface);
   PhaseTimer timer;
   timer.start("synthesize");
@@ -45,7 +46,7 @@ int run_synth(const SynthCli& c) {
                      {"seed", p.seed}, {"scene", c.surface.scene}};
   SynthesisRecord rec{r.psd, r.k_eq44, r.h0_eq44_on_lattice, p.seed, p.oversample, p.sampling};
   prov.timings = timer.to_json();
-  write_surface_file(out_path, r.map, rec, prov.to_json());
+  write_surface_file(out_path, r.map, rec, prov.to_json(), format);
   timer.stop();
 
   const double eq44_err = r.h0_eq44_on_lattice / p.h0 - 1;
@@ -92,13 +93,16 @@ Command add_synth(CLI::App& root) {
   CLI::App* s = root.add_subcommand("synth", "synthesize a self-affine road surface from its power spectrum");
   s->footer(
       "Synthesize a periodic, isotropic, self-affine surface by random-phase FFT (thesis sec. 4.1)\n"
-      "and write it as an HDF5 height map (/height, dx, dy; the prescribed PSD in /synthesis).\n"
+      "and write it as an HDF5 height map (/height, dx, dy; the prescribed PSD in /synthesis) or X3P.\n"
       "The plateau k comes from eq. 4.4 and is then normalised on the lattice, so the measured\n"
       "rms height equals --h0. Same options and seed give a bit-identical map.\n"
       "Example: wetroad synth --scene default -o road.h5\n"
       "         wetroad synth --size 300 --dx 1e-4 --h0 7.08e-4 --q1 62832 --oversample 2 -o c.h5\n"
       "         wetroad synth --size 300 --dx 1e-4 --h0 3.05e-4 --sampling thesis -o a.h5   (the thesis's dataset A)");
-  s->add_option("-o,--output", c->output, "output HDF5 file (written atomically)")->required();
+  s->add_option("-o,--output", c->output, "output file, HDF5 or X3P (written atomically)")->required();
+  s->add_option("--format", c->format,
+                "hdf5, x3p (ISO 25178-72, opens in Gwyddion, MountainsMap, openGPS) or auto: x3p for a .x3p name")
+      ->capture_default_str();
   add_synth_options(*s, c->surface);
   s->add_option("--json", c->json, "also write a JSON summary of what was generated");
   s->add_option("--threads", c->surface.threads, "worker threads (default: all hardware threads); results do not depend on it");

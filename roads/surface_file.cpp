@@ -1,11 +1,36 @@
 #include "roads/surface_file.hpp"
 
+#include <algorithm>
+#include <cctype>
+
+#include "lib/core/errors.hpp"
 #include "lib/io/hdf5_file.hpp"
+#include "roads/x3p_file.hpp"
 
 namespace wr {
 
+SurfaceFormat output_format(const std::string& path, const std::string& format) {
+  if (format == "hdf5") return SurfaceFormat::hdf5;
+  if (format == "x3p") return SurfaceFormat::x3p;
+  if (format != "auto") throw InputError("--format", "must be auto, hdf5 or x3p (got '" + format + "')");
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".x3p" ? SurfaceFormat::x3p : SurfaceFormat::hdf5;
+}
+
 void write_surface_file(const std::string& path, const HeightMap& map,
-                        const std::optional<SynthesisRecord>& synthesis, const nlohmann::json& provenance) {
+                        const std::optional<SynthesisRecord>& synthesis, const nlohmann::json& provenance,
+                        SurfaceFormat format) {
+  if (format == SurfaceFormat::x3p) {
+    nlohmann::json p = provenance;
+    if (synthesis)
+      p["synthesis"] = {{"h0", synthesis->psd.h0}, {"hurst", synthesis->psd.hurst}, {"qL", synthesis->psd.qL},
+                        {"q0", synthesis->psd.q0}, {"q1", synthesis->psd.q1}, {"q1_cut", synthesis->psd.q1_cut},
+                        {"plateau_k", synthesis->psd.k}, {"seed", synthesis->seed},
+                        {"oversample", synthesis->oversample}, {"sampling", sampling_name(synthesis->sampling)}};
+    write_x3p(path, map, provenance.value("command", std::string("wetroad")), p);
+    return;
+  }
   Hdf5Writer w(path);
   const std::string ds = map.is_profile() ? "/profile" : "/height";
   if (map.is_profile())

@@ -22,8 +22,18 @@ struct SynthesisRecord {
   Sampling sampling = Sampling::nyquist;
 };
 
-// Writes `map` (and the synthesis record, if any) atomically to `path`.
+// The container of a written surface: wetroad's HDF5, or X3P (ISO 25178-72, roads/x3p_file.hpp)
+// for other tools (Gwyddion, MountainsMap, openGPS).
+enum class SurfaceFormat { hdf5, x3p };
+
+// From a --format value: "hdf5", "x3p", or "auto" (x3p when `path` ends in .x3p, any case;
+// hdf5 otherwise). InputError("--format", ...) for anything else.
+SurfaceFormat output_format(const std::string& path, const std::string& format);
+
+// Writes `map` (and the synthesis record, if any) atomically to `path`. X3P keeps heights,
+// spacings and periodicity; the synthesis record goes into its provenance (wetroad.json).
 void write_surface_file(const std::string& path, const HeightMap& map,
-                        const std::optional<SynthesisRecord>& synthesis, const nlohmann::json& provenance);
+                        const std::optional<SynthesisRecord>& synthesis, const nlohmann::json& provenance,
+                        SurfaceFormat format = SurfaceFormat::hdf5);
 
 }  // namespace wr

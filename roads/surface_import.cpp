@@ -13,6 +13,8 @@
 #include "lib/core/errors.hpp"
 #include "lib/core/memory_guard.hpp"
 #include "lib/io/hdf5_file.hpp"
+#include "roads/point_cloud_grid.hpp"
+#include "roads/x3p_file.hpp"
 
 namespace wr {
 namespace {
@@ -119,6 +121,7 @@ LoadedSurface load_hdf5(const std::string& path) {
   if (scale != 1.0)
     for (double& v : m.h) v *= scale;
   out.map = std::move(m);
+  out.unit_scale = scale;
   out.synthesis = read_synthesis(f);
   return out;
 }
@@ -180,6 +183,39 @@ LoadedSurface load_text(const std::string& path, const TextGridOptions& opt) {
   for (double& v : values) v *= opt.unit_scale;
   m.h.assign(values.begin(), values.end());
   out.map = std::move(m);
+  out.unit_scale = opt.unit_scale;
+  return out;
+}
+
+LoadedSurface load_x3p(const std::string& path) {
+  X3pContents x = read_x3p(path);
+  LoadedSurface out;
+  out.source = path;
+  out.format = "x3p";
+  check_size(x.map, path);
+  out.detail = "X3P " + x.feature_type + ", data type " + std::string(1, x.data_type) +
+               (x.checksums_verified ? ", checksums verified" : ", main.xml checksum absent") +
+               (x.creator.empty() ? std::string() : ", written by " + x.creator);
+  out.warnings = std::move(x.warnings);
+  out.map = std::move(x.map);
+  return out;
+}
+
+LoadedSurface load_points(const std::string& path, const TextGridOptions& opt) {
+  if (!opt.dx) throw InputError(path, "a point cloud needs --dx (m), the spacing of the grid to interpolate onto");
+  PointCloudGridOptions g;
+  g.dx = *opt.dx;
+  g.dy = opt.dy;
+  g.max_gap = opt.max_gap;
+  GriddedCloud c = grid_point_cloud(read_point_cloud_text(path, opt.unit_scale), g, path);
+  LoadedSurface out;
+  out.source = path;
+  out.format = "points";
+  out.unit_scale = opt.unit_scale;
+  out.detail = std::to_string(c.points) + " points (" + std::to_string(c.duplicates) + " at repeated x, y), mean spacing " +
+               num(c.mean_spacing) + " m, longest triangle edge used " + num(c.max_edge_used) + " m; " + c.method;
+  check_size(c.map, path);
+  out.map = std::move(c.map);
   return out;
 }
 
@@ -352,6 +388,23 @@ std::vector<std::string> check_plausible(const LoadedSurface& s) {
 
 }  // namespace
 
+std::string describe_import(const LoadedSurface& s) {
+  const HeightMap& m = s.map;
+  std::string line = s.format + ": ";
+  line += m.is_profile() ? "profile of " + std::to_string(m.nx) + " samples, dx " + num(m.dx) + " m"
+                         : std::to_string(m.ny) + " x " + std::to_string(m.nx) + " map (rows = y), dx " + num(m.dx) +
+                               " m, dy " + num(m.dy) + " m";
+  line += m.periodic ? ", periodic" : ", not periodic";
+  line += s.unit_scale == 1.0 ? ", heights in m" : ", heights read in units of " + num(s.unit_scale) + " m";
+  if (s.dropouts)
+    line += ", " + std::to_string(s.dropouts) + " invalid (" + num(100.0 * double(s.dropouts) / double(m.h.size())) +
+            " %) filled " + (m.is_profile() ? "by linear interpolation" : "from their valid neighbours");
+  else
+    line += ", no invalid points";
+  if (!s.detail.empty()) line += "; " + s.detail;
+  return line;
+}
+
 LoadedSurface load_surface(const std::string& path, const TextGridOptions& text, Levels levels) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
@@ -362,8 +415,12 @@ LoadedSurface load_surface(const std::string& path, const TextGridOptions& text,
   LoadedSurface s;
   if (looks_like_hdf5(path))
     s = load_hdf5(path);
+  else if (looks_like_zip(path) || ext == ".x3p")
+    s = load_x3p(path);
   else if (ext == ".h5" || ext == ".hdf5" || ext == ".he5" || !text.dx)
-    throw InputError(path, text.dx ? "not an HDF5 file" : "not an HDF5 file (for a plain-text grid give --dx)");
+    throw InputError(path, text.dx ? "not an HDF5 file" : "not HDF5 or X3P (for a plain-text grid or point cloud give --dx)");
+  else if (text.points)
+    s = load_points(path, text);
   else
     s = load_text(path, text);
 

@@ -1,5 +1,8 @@
 #pragma once
-// Loading a surface for analysis: HDF5 (/height or /profile, design.md) or a plain-text grid.
+// Loading a surface for analysis: HDF5 (/height or /profile, design.md), X3P (ISO 25178-72,
+// roads/x3p_file.hpp), a plain-text grid, or a text x y z point cloud gridded on CGAL's Delaunay
+// triangulation (roads/point_cloud_grid.hpp). The format is found from the content (HDF5 and
+// zip signatures), then the options: `points` reads text as a point cloud, otherwise as a grid.
 //
 // After reading, non-finite samples (NaN, Inf) are dropouts. They are counted and filled:
 //  - maps: layer by layer from the edge of each hole inward, every dropout with at least one
@@ -25,11 +28,14 @@
 
 namespace wr {
 
+// For inputs that do not carry their own grid: text grids and point clouds.
 struct TextGridOptions {
-  std::optional<double> dx;  // m; required for text grids
+  std::optional<double> dx;  // m; required for text grids and point clouds (the grid to make)
   std::optional<double> dy;  // m; default dx
-  double unit_scale = 1.0;   // metres per height unit of the file
-  bool periodic = false;     // measured data is not periodic unless said so
+  double unit_scale = 1.0;   // metres per unit of the file (heights; all of x, y, z for points)
+  bool periodic = false;     // measured data is not periodic unless said so (text grids)
+  bool points = false;       // the text holds x y z points, not a grid
+  std::optional<double> max_gap;  // m, point clouds: longest triangle edge interpolated across
 };
 
 struct LoadedSurface {
@@ -39,8 +45,10 @@ struct LoadedSurface {
   double tilt_x = 0, tilt_y = 0;       // removed mean-plane slopes, m/m
   double offset = 0;                   // mean level (removed unless Levels::keep), m
   double kept_offset = 0;              // the part of `offset` still in the map (Levels::keep), m
+  double unit_scale = 1.0;             // metres per height unit of the file (heights are in m now)
   std::string source;                  // file path
-  std::string format;                  // "hdf5" or "text"
+  std::string format;                  // "hdf5", "x3p", "text" or "points"
+  std::string detail;                  // format-specific facts for describe_import (one line)
   std::optional<SynthesisRecord> synthesis;
   // What the caller should tell the user (one line each): a map mostly of dropouts, heights
   // beyond any road texture (a unit left out).
@@ -59,6 +67,10 @@ enum class Levels { remove_mean, keep };
 
 LoadedSurface load_surface(const std::string& path, const TextGridOptions& text = {},
                            Levels levels = Levels::remove_mean);
+
+// One line saying what was read: format, grid, spacing, unit, invalid points and what filled
+// them, and the format's own facts (X3P data type, checksums; point-cloud method).
+std::string describe_import(const LoadedSurface& s);
 
 // Fills dropouts of `map` in place by the rule above; returns how many were filled.
 std::size_t fill_dropouts(HeightMap& map);

@@ -16,16 +16,16 @@ namespace {
 
 using Context = std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)>;
 
-Context new_context() {
+Context new_context(const EVP_MD* md = EVP_sha256()) {
   Context ctx(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
-  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1) throw std::runtime_error("SHA-256 unavailable");
+  if (!ctx || EVP_DigestInit_ex(ctx.get(), md, nullptr) != 1) throw std::runtime_error("message digest unavailable");
   return ctx;
 }
 
 std::string finish(EVP_MD_CTX* ctx) {
   unsigned char md[EVP_MAX_MD_SIZE];
   unsigned int n = 0;
-  if (EVP_DigestFinal_ex(ctx, md, &n) != 1) throw std::runtime_error("SHA-256 failed");
+  if (EVP_DigestFinal_ex(ctx, md, &n) != 1) throw std::runtime_error("message digest failed");
   static const char* hex = "0123456789abcdef";
   std::string out;
   for (unsigned int i = 0; i < n; ++i) {
@@ -39,6 +39,12 @@ std::string finish(EVP_MD_CTX* ctx) {
 
 std::string sha256_hex(const std::string& bytes) {
   Context ctx = new_context();
+  EVP_DigestUpdate(ctx.get(), bytes.data(), bytes.size());
+  return finish(ctx.get());
+}
+
+std::string md5_hex(const std::string& bytes) {
+  Context ctx = new_context(EVP_md5());
   EVP_DigestUpdate(ctx.get(), bytes.data(), bytes.size());
   return finish(ctx.get());
 }

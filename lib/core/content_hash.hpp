@@ -6,6 +6,8 @@
 namespace wr {
 
 std::string sha256_hex(const std::string& bytes);
+// MD5, only where a file format prescribes it (the checksums of X3P archives, ISO 25178-72).
+std::string md5_hex(const std::string& bytes);
 // Streams the file; throws InputError(path, ...) when it cannot be read.
 std::string sha256_file_hex(const std::string& path);
 

@@ -1,0 +1,173 @@
+#include "roads/point_cloud_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include "lib/core/errors.hpp"
+#include "lib/core/memory_guard.hpp"
+
+namespace wr {
+namespace {
+
+// Exact predicates: the orientation tests of the triangulation never err on nearly collinear
+// scanner points (rows of a line scanner are exactly that); coordinates stay doubles.
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<double, Kernel>;  // info: z
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+using Point2 = Kernel::Point_2;
+
+std::string num(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+double squared_longest_edge(const Delaunay::Face_handle& f) {
+  double m = 0;
+  for (int i = 0; i < 3; ++i)
+    m = std::max(m, CGAL::to_double(CGAL::squared_distance(f->vertex(i)->point(), f->vertex((i + 1) % 3)->point())));
+  return m;
+}
+
+// Area of the convex hull: the finite faces of a Delaunay triangulation tile it.
+double hull_area(const Delaunay& dt) {
+  double a = 0;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) a += std::abs(dt.triangle(f).area());
+  return a;
+}
+
+// Linear interpolant on face f at p (barycentric weights from signed sub-triangle areas).
+double interpolate_on(const Delaunay::Face_handle& f, const Point2& p) {
+  const Point2 &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &c = f->vertex(2)->point();
+  auto area2 = [](const Point2& u, const Point2& v, const Point2& w) {
+    return (v.x() - u.x()) * (w.y() - u.y()) - (w.x() - u.x()) * (v.y() - u.y());
+  };
+  const double total = area2(a, b, c);
+  const double la = area2(p, b, c) / total, lb = area2(a, p, c) / total, lc = 1.0 - la - lb;
+  return la * f->vertex(0)->info() + lb * f->vertex(1)->info() + lc * f->vertex(2)->info();
+}
+
+}  // namespace
+
+GriddedCloud grid_point_cloud(const std::vector<CloudPoint>& points, const PointCloudGridOptions& opt,
+                              const std::string& source) {
+  if (!(opt.dx > 0) || !std::isfinite(opt.dx)) throw InputError(source, "--dx must be a positive grid spacing in m");
+  const double dy = opt.dy.value_or(opt.dx);
+  if (!(dy > 0) || !std::isfinite(dy)) throw InputError(source, "--dy must be a positive grid spacing in m");
+  if (opt.max_gap && !(*opt.max_gap > 0)) throw InputError(source, "--max-gap must be a positive length in m");
+  if (points.size() < 3) throw InputError(source, "a point cloud needs at least 3 points (got " + std::to_string(points.size()) + ")");
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  std::vector<std::pair<Point2, double>> sites;
+  sites.reserve(points.size());
+  for (const CloudPoint& p : points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(source, "a point has a non-finite coordinate (x, y and z must be numbers)");
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    sites.emplace_back(Point2(p.x, p.y), p.z);
+  }
+  const std::size_t nx = std::size_t(std::floor((x1 - x0) / opt.dx * (1 + 1e-12))) + 1;
+  const std::size_t ny = std::size_t(std::floor((y1 - y0) / dy * (1 + 1e-12))) + 1;
+  if (nx < 2 || ny < 2)
+    throw InputError(source, "the points span " + num(x1 - x0) + " x " + num(y1 - y0) + " m: under two grid spacings");
+  const std::size_t cells = checked_cells(nx, ny, source);
+  require_memory(cells, sizeof(double), 6.0, source, "gridding this point cloud");
+
+  // Spatially sorted insertion (CGAL's range constructor) keeps the walk short; the first
+  // point at a repeated (x, y) keeps its z.
+  const Delaunay dt(sites.begin(), sites.end());
+  if (dt.dimension() < 2) throw InputError(source, "the points lie on one line in x, y: no surface to grid");
+
+  GriddedCloud out;
+  out.points = points.size();
+  out.duplicates = points.size() - dt.number_of_vertices();
+  out.mean_spacing = std::sqrt(hull_area(dt) / double(dt.number_of_vertices()));
+  out.max_gap = opt.max_gap.value_or(kDefaultGapSpacings * out.mean_spacing);
+  out.x0 = x0;
+  out.y0 = y0;
+  out.map = HeightMap(nx, ny, opt.dx, dy);
+  out.map.periodic = false;
+  const double gap2 = out.max_gap * out.max_gap;
+  double used2 = 0;
+  Delaunay::Face_handle hint;
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      // Row order: each node starts its walk from the previous node's face (a step away).
+      const std::size_t ii = (j % 2 == 0) ? i : nx - 1 - i;
+      const Point2 p(x0 + double(ii) * opt.dx, y0 + double(j) * dy);
+      Delaunay::Locate_type lt;
+      int li = 0;
+      Delaunay::Face_handle f = dt.locate(p, lt, li, hint);
+      double& h = out.map(ii, j);
+      h = std::numeric_limits<double>::quiet_NaN();
+      if (lt == Delaunay::OUTSIDE_CONVEX_HULL || lt == Delaunay::OUTSIDE_AFFINE_HULL) continue;
+      if (dt.is_infinite(f)) f = f->neighbor(li);  // on a hull edge or vertex: its finite face
+      if (dt.is_infinite(f)) {                    // a hull vertex whose chosen neighbour is infinite too
+        if (lt != Delaunay::VERTEX) continue;
+        h = f->vertex(li)->info();
+        continue;
+      }
+      hint = f;
+      const double e2 = squared_longest_edge(f);
+      if (e2 > gap2) continue;
+      used2 = std::max(used2, e2);
+      h = lt == Delaunay::VERTEX ? f->vertex(li)->info() : interpolate_on(f, p);
+    }
+  out.max_edge_used = std::sqrt(used2);
+  out.dropouts = std::size_t(std::count_if(out.map.h.begin(), out.map.h.end(), [](double v) { return std::isnan(v); }));
+  out.method = "point cloud: linear interpolation on the CGAL 2-D Delaunay triangulation of " +
+               std::to_string(dt.number_of_vertices()) + " points, triangles with an edge over " + num(out.max_gap) +
+               " m left as dropouts";
+  return out;
+}
+
+std::vector<CloudPoint> read_point_cloud_text(const std::string& path, double unit_scale) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open");
+  std::vector<CloudPoint> pts;
+  std::string line;
+  std::size_t lineno = 0;
+  bool header_allowed = true;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    for (char& c : line)
+      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+    std::istringstream ls(line);
+    std::string tok;
+    double v[3];
+    int n = 0;
+    bool numeric = true;
+    while (n < 3 && ls >> tok) {
+      char* end = nullptr;
+      v[n] = std::strtod(tok.c_str(), &end);
+      if (end == tok.c_str() || *end != '\0') {
+        numeric = false;
+        break;
+      }
+      ++n;
+    }
+    if (!numeric && header_allowed && pts.empty()) {  // a line of column names
+      header_allowed = false;
+      continue;
+    }
+    if (!numeric) throw InputError(path, "line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
+    if (n < 3)
+      throw InputError(path, "line " + std::to_string(lineno) + " has " + std::to_string(n) +
+                                 " values; a point cloud needs x y z on every line");
+    pts.push_back({v[0] * unit_scale, v[1] * unit_scale, v[2] * unit_scale});
+  }
+  if (pts.empty()) throw InputError(path, "no points found (empty file?)");
+  return pts;
+}
+
+}  // namespace wr
