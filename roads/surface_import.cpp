@@ -436,7 +436,7 @@ LoadedSurface load_surface(const std::string& path, const TextGridOptions& text,
   s.kept_offset = keep ? p.offset : 0;
   s.tilt_x = p.tilt_x;
   s.tilt_y = p.tilt_y;
-  s.warnings = check_plausible(s);
+  for (std::string& w : check_plausible(s)) s.warnings.push_back(std::move(w));
   return s;
 }
 
