@@ -417,8 +417,10 @@ LoadedSurface load_surface(const std::string& path, const TextGridOptions& text,
     s = load_hdf5(path);
   else if (looks_like_zip(path) || ext == ".x3p")
     s = load_x3p(path);
-  else if (ext == ".h5" || ext == ".hdf5" || ext == ".he5" || !text.dx)
-    throw InputError(path, text.dx ? "not an HDF5 file" : "not HDF5 or X3P (for a plain-text grid or point cloud give --dx)");
+  else if (ext == ".h5" || ext == ".hdf5" || ext == ".he5")
+    throw InputError(path, "not an HDF5 file");
+  else if (!text.dx)
+    throw InputError(path, "not an HDF5 or X3P file (for a plain-text grid or point cloud give --dx)");
   else if (text.points)
     s = load_points(path, text);
   else
