@@ -29,5 +29,6 @@ BenchEntry add_accuracy_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_mesh_convergence_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_hertz_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_spot_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
+BenchEntry add_obstacle_rays_bench(CLI::App& bench);  // app/bench_cli_geometry.cpp
 
 }  // namespace wr::app

@@ -370,6 +370,7 @@ int run_contact(ContactCli c) {
                       {"layers", r.layers},
                       {"coarsenings", r.coarsenings},
                       {"amg", amg_hierarchy_name(r.amg)},
+                      {"solver", linear_solver_name(r.solver)},
                       {"face_spacing", r.face_spacing},
                       {"rms_slope", r.rms_slope},
                       {"e_star", r.e_star},
@@ -384,8 +385,10 @@ int run_contact(ContactCli c) {
   if (r.failed) return rank == 0 ? report_failure(c, r.steps, "relative change per Signorini iteration") : 3;
   if (talk) {
     std::printf("  %zu nodes (%zu with hanging), %zu bricks in %d layers, %d in-plane coarsenings, %zu dofs, %d rank(s), "
-                "%s AMG hierarchy\n",
-                r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks, amg_hierarchy_name(r.amg));
+                "%s\n",
+                r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks,
+                r.solver == LinearSolver::direct ? "sparse Cholesky (direct)"
+                                                 : (std::string(amg_hierarchy_name(r.amg)) + " AMG hierarchy").c_str());
     print_peak(peak, r.steps);
     std::printf("  timing [s]: setup %.2f  linearise %.2f  rotate %.2f  solve %.2f  total %.2f\n", r.wall_setup,
                 t_lin, t_rot, t_sol, r.wall_s);

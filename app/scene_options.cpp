@@ -118,6 +118,11 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
                "products: ~5.3 instead of ~8.4 KiB per node, more CG iterations), or auto (lean only where standard "
                "would exceed 80 % of this host's memory)")
       ->capture_default_str();
+  s.add_option("--solver", c.solver,
+               "fem: linear solver of the active-set systems: direct (sparse Cholesky: SuiteSparse CHOLMOD on one "
+               "rank, MUMPS on several), amg (CG with the AMG preconditioner of --amg), or auto (direct up to "
+               "40000 nodes, where it is measured faster; docs/performance.md)")
+      ->capture_default_str();
   s.add_option("--thickness", c.thickness,
                "spectral: layer thickness in m, or inf for a half-space (default: the block height)");
 }
@@ -126,6 +131,7 @@ void finish_scene_options(SceneCli& c) {
   ContactScene& s = c.scene;
   s.thickness = parse_thickness(c.thickness);
   s.amg = parse_amg_hierarchy(c.amg, "--amg");
+  s.solver = parse_linear_solver(c.solver, "--solver");
   s.follow_geometry = !c.vertical;
   if (s.shear_steps < 0) throw InputError("--shear-steps", "must be >= 1 (0: as --steps)");
   if (s.shear_steps == 0) s.shear_steps = s.normal_steps;

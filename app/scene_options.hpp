@@ -14,6 +14,7 @@ struct SceneCli {
   ContactScene scene;
   std::string thickness;      // m or "inf"; empty: the block height
   std::string amg = "auto";
+  std::string solver = "auto";
   bool vertical = false;
   CLI::Option *uz = nullptr, *ux = nullptr;
 };

@@ -1,5 +1,7 @@
 #include "reports/html_report.hpp"
 
+#include "lib/core/least_squares.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -10,6 +12,7 @@
 #include <sstream>
 
 #include "lib/core/errors.hpp"
+#include "lib/core/least_squares.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "reports/friction_section.hpp"
@@ -392,23 +395,16 @@ PeakEstimate peak_position(const std::vector<double>& x, const std::vector<doubl
     if (y[k] > y[best]) best = k;
   PeakEstimate largest{x[best], y[best], "largest value"};
   if (n < 3) return largest;
-  // Least squares y = c0 + c1 x + c2 x^2 through the normal equations (3 x 3, Cramer's rule).
-  double s[5] = {0, 0, 0, 0, 0}, t[3] = {0, 0, 0};
+  // Least squares y = c0 + c1 x + c2 x^2.
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(n), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(n));
   for (std::size_t k = 0; k < n; ++k) {
-    double p = 1;
-    for (int i = 0; i < 5; ++i, p *= x[k]) s[i] += p;
-    t[0] += y[k];
-    t[1] += y[k] * x[k];
-    t[2] += y[k] * x[k] * x[k];
+    A.row(Eigen::Index(k)) << 1.0, x[k], x[k] * x[k];
+    b(Eigen::Index(k)) = y[k];
   }
-  auto det3 = [](double a, double b, double c, double d, double e, double f, double g, double h, double i) {
-    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
-  };
-  const double d = det3(s[0], s[1], s[2], s[1], s[2], s[3], s[2], s[3], s[4]);
-  if (std::abs(d) < 1e-300) return largest;
-  const double c1 = det3(s[0], t[0], s[2], s[1], t[1], s[3], s[2], t[2], s[4]) / d;
-  const double c2 = det3(s[0], s[1], t[0], s[1], s[2], t[1], s[2], s[3], t[2]) / d;
-  const double c0 = det3(t[0], s[1], s[2], t[1], s[2], s[3], t[2], s[3], s[4]) / d;
+  const std::optional<Eigen::VectorXd> fit = least_squares(A, b);
+  if (!fit) return largest;
+  const double c0 = (*fit)(0), c1 = (*fit)(1), c2 = (*fit)(2);
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
   if (!(c2 < 0)) return largest;
   const double xv = -c1 / (2 * c2);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "lib/core/least_squares.hpp"
+
 namespace wr {
 namespace {
 
@@ -11,26 +13,26 @@ struct Line {
   double a = 0, beta = 0, sse = 0;
 };
 
-// Weighted least squares of y = a - beta * max(0, x - x0).
+// Weighted least squares of y = a - beta * max(0, x - x0) (rows scaled by sqrt(w)).
 Line fit_for_knee(const std::vector<double>& x, const std::vector<double>& y,
                   const std::vector<double>& w, double x0) {
-  double sw = 0, st = 0, stt = 0, sy = 0, sty = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double t = -std::max(0.0, x[i] - x0);
-    sw += w[i];
-    st += w[i] * t;
-    stt += w[i] * t * t;
-    sy += w[i] * y[i];
-    sty += w[i] * t * y[i];
+  const Eigen::Index n = Eigen::Index(x.size());
+  Eigen::MatrixXd A(n, 2);
+  Eigen::VectorXd b(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double sw = std::sqrt(w[std::size_t(i)]);
+    A(i, 0) = sw;
+    A(i, 1) = -sw * std::max(0.0, x[std::size_t(i)] - x0);
+    b(i) = sw * y[std::size_t(i)];
   }
   Line L;
-  const double det = sw * stt - st * st;
-  if (std::abs(det) < 1e-300) {
+  if (const auto c = least_squares(A, b)) {
+    L.a = (*c)(0);
+    L.beta = (*c)(1);
+  } else {  // no bin beyond the knee: a level line
+    double sy = 0, sw = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) sy += w[i] * y[i], sw += w[i];
     L.a = sy / sw;
-    L.beta = 0;
-  } else {
-    L.a = (stt * sy - st * sty) / det;
-    L.beta = (sw * sty - st * sy) / det;
   }
   for (std::size_t i = 0; i < x.size(); ++i) {
     const double r = y[i] - (L.a - L.beta * std::max(0.0, x[i] - x0));

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "lib/core/errors.hpp"
+#include "lib/core/least_squares.hpp"
 #include "lib/core/memory_guard.hpp"
 #include "lib/io/hdf5_file.hpp"
 #include "roads/point_cloud_grid.hpp"
@@ -310,7 +311,7 @@ std::size_t fill_dropouts(HeightMap& m) {
 }
 
 MeanPlane fit_mean_plane(const HeightMap& m, const std::vector<unsigned char>& dropout) {
-  // Centred coordinates decouple the offset from the slopes; solve the 3x3 normal equations.
+  // Centred coordinates decouple the offset from the slopes (sx = sy = 0 without dropouts).
   const double cx = 0.5 * (m.nx - 1), cy = 0.5 * (m.ny - 1);
   double sxx = 0, syy = 0, sxy = 0, sx = 0, sy = 0, n = 0, sz = 0, sxz = 0, syz = 0;
   for (std::size_t iy = 0; iy < m.ny; ++iy)
@@ -327,25 +328,16 @@ MeanPlane fit_mean_plane(const HeightMap& m, const std::vector<unsigned char>& d
       sxz += x * z;
       syz += y * z;
     }
-  // Normal equations [n sx sy; sx sxx sxy; sy sxy syy] [a bx by] = [sz sxz syz]
-  double A[3][4] = {{n, sx, sy, sz}, {sx, sxx, sxy, sxz}, {sy, sxy, syy, syz}};
+  // Normal equations [n sx sy; sx sxx sxy; sy sxy syy] [a bx by] = [sz sxz syz].
+  Eigen::Matrix3d N;
+  N << n, sx, sy, sx, sxx, sxy, sy, sxy, syy;
+  const Eigen::Vector3d r(sz, sxz, syz);
   // A periodic surface has no tilt (a trend would break the periodicity), and a least-squares
   // plane through one period of it would only remove genuine long-wavelength texture:
   // remove its mean level alone.
   const int dim = m.periodic ? 1 : (m.is_profile() ? 2 : 3);  // a profile has no y slope
-  for (int c = 0; c < dim; ++c) {
-    int piv = c;
-    for (int r = c + 1; r < dim; ++r)
-      if (std::abs(A[r][c]) > std::abs(A[piv][c])) piv = r;
-    std::swap(A[c], A[piv]);
-    for (int r = 0; r < dim; ++r) {
-      if (r == c || A[c][c] == 0) continue;
-      const double f = A[r][c] / A[c][c];
-      for (int k = c; k < 4; ++k) A[r][k] -= f * A[c][k];
-    }
-  }
-  return {A[0][0] != 0 ? A[0][3] / A[0][0] : 0, dim >= 2 && A[1][1] != 0 ? A[1][3] / A[1][1] : 0,
-          dim == 3 && A[2][2] != 0 ? A[2][3] / A[2][2] : 0};
+  const Eigen::VectorXd c = solve_normal_equations(N.topLeftCorner(dim, dim), r.head(dim));
+  return {c(0), dim >= 2 ? c(1) : 0.0, dim == 3 ? c(2) : 0.0};
 }
 
 MeanPlane remove_mean_plane(HeightMap& m, const std::vector<unsigned char>& dropout) {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lib/core/least_squares.hpp"
+
 namespace wr {
 namespace {
 
@@ -13,53 +15,27 @@ void check_curve(const std::vector<double>& s, const std::vector<double>& a, std
     if (!(s[k] > 0) || !(a[k] >= 0 && a[k] <= 1)) throw std::invalid_argument("sigma* must be > 0 and A/A0 in [0, 1]");
 }
 
-// Solves the 4 x 4 system M x = r (Gaussian elimination, partial pivoting).
-std::vector<double> solve4(std::vector<double> M, std::vector<double> r) {
-  const int n = 4;
-  for (int c = 0; c < n; ++c) {
-    int p = c;
-    for (int i = c + 1; i < n; ++i)
-      if (std::abs(M[i * n + c]) > std::abs(M[p * n + c])) p = i;
-    for (int j = 0; j < n; ++j) std::swap(M[c * n + j], M[p * n + j]);
-    std::swap(r[c], r[p]);
-    if (M[c * n + c] == 0) throw std::invalid_argument("the load steps do not determine a quartic (repeated sigma*)");
-    for (int i = c + 1; i < n; ++i) {
-      const double f = M[i * n + c] / M[c * n + c];
-      for (int j = c; j < n; ++j) M[i * n + j] -= f * M[c * n + j];
-      r[i] -= f * r[c];
-    }
-  }
-  std::vector<double> x(n);
-  for (int i = n - 1; i >= 0; --i) {
-    double v = r[i];
-    for (int j = i + 1; j < n; ++j) v -= M[i * n + j] * x[j];
-    x[i] = v / M[i * n + i];
-  }
-  return x;
-}
-
 }  // namespace
 
 QuarticAreaFit fit_quartic_area(const std::vector<double>& s, const std::vector<double>& a) {
   check_curve(s, a, 4);
-  // Normal equations in the basis s, s^2, s^3, s^4 (scaled by the largest s for conditioning).
+  // Least squares in the basis s, s^2, s^3, s^4 (scaled by the largest s for conditioning).
   double smax = 0;
   for (double v : s) smax = std::max(smax, v);
-  std::vector<double> M(16, 0.0), r(4, 0.0);
+  Eigen::MatrixXd B(static_cast<Eigen::Index>(s.size()), 4);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(s.size()));
   for (std::size_t k = 0; k < s.size(); ++k) {
     const double x = s[k] / smax;
-    double b[4] = {x, x * x, x * x * x, x * x * x * x};
-    for (int i = 0; i < 4; ++i) {
-      r[i] += b[i] * a[k];
-      for (int j = 0; j < 4; ++j) M[i * 4 + j] += b[i] * b[j];
-    }
+    B.row(Eigen::Index(k)) << x, x * x, x * x * x, x * x * x * x;
+    y(Eigen::Index(k)) = a[k];
   }
-  const std::vector<double> c = solve4(M, r);
+  const std::optional<Eigen::VectorXd> c = least_squares(B, y);
+  if (!c) throw std::invalid_argument("the load steps do not determine a quartic (repeated sigma*)");
   QuarticAreaFit f;
-  f.kappa = c[0] / smax;
-  f.lambda = c[1] / (smax * smax);
-  f.omega = c[2] / (smax * smax * smax);
-  f.pi = c[3] / (smax * smax * smax * smax);
+  f.kappa = (*c)(0) / smax;
+  f.lambda = (*c)(1) / (smax * smax);
+  f.omega = (*c)(2) / (smax * smax * smax);
+  f.pi = (*c)(3) / (smax * smax * smax * smax);
   double mean = 0, ss_tot = 0, ss_res = 0;
   for (double v : a) mean += v / double(a.size());
   for (std::size_t k = 0; k < s.size(); ++k) {

@@ -154,6 +154,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     b.poisson = opt.poisson;
     b.comm = opt.comm;
     b.amg = opt.amg;
+    b.solver = opt.solver;
     return b;
   };
   const BlockSpec b = block_spec(opt.refine);
@@ -172,11 +173,17 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   res.layers = block.mesh().layers();
   res.coarsenings = block.mesh().coarsenings();
   res.amg = block.amg_hierarchy();
+  res.solver = block.linear_solver();
   // Before a run of hours, say what it holds: the mesh and the hierarchy that decides its memory.
-  if ((opt.progress_every_s > 0 || opt.trace) && rank_of(opt.comm) == 0)
-    std::fprintf(stderr, "  block: %zu nodes, %zu dofs, %s AMG hierarchy (about %.1f GiB in all), set up in %.1f s\n",
-                 res.nodes, res.dofs, amg_hierarchy_name(res.amg),
-                 fem_memory_estimate(double(res.nodes), res.amg) / 1073741824.0, res.wall_setup);
+  if ((opt.progress_every_s > 0 || opt.trace) && rank_of(opt.comm) == 0) {
+    if (res.solver == LinearSolver::direct)
+      std::fprintf(stderr, "  block: %zu nodes, %zu dofs, sparse Cholesky (direct solver), set up in %.1f s\n", res.nodes,
+                   res.dofs, res.wall_setup);
+    else
+      std::fprintf(stderr, "  block: %zu nodes, %zu dofs, %s AMG hierarchy (about %.1f GiB in all), set up in %.1f s\n",
+                   res.nodes, res.dofs, amg_hierarchy_name(res.amg),
+                   fem_memory_estimate(double(res.nodes), res.amg) / 1073741824.0, res.wall_setup);
+  }
   res.face_nodes = std::size_t(b.mesh.nx + 1) * (b.mesh.ny + 1);
   res.rms_slope = opt.rms_slope;
   res.e_star = opt.young / (1 - opt.poisson * opt.poisson);

@@ -69,6 +69,7 @@ struct ContactTestOptions {
   double rms_slope = 0;     // of the obstacle as triangulated (normalises sigma*, eq. 5.2); > 0
   MPI_Comm comm = MPI_COMM_NULL;  // the processes sharing the block (null: PETSC_COMM_WORLD)
   AmgHierarchy amg = AmgHierarchy::automatic;  // CG's AMG hierarchy (amg_hierarchy.hpp)
+  LinearSolver solver = LinearSolver::automatic;  // sparse Cholesky or AMG (linear_solver.hpp)
   // Load-step cutbacks: a step that fails (not converged, or a node left too deep) is retried
   // from the last converged state in two halves, each of which may again be halved, down to
   // this many times (0 ... 8; 0: a failed step ends the run). Not with coarse_refine.
@@ -119,6 +120,7 @@ struct ContactTestResult {
   std::size_t nodes = 0, dofs = 0, face_nodes = 0, elements = 0, mesh_points = 0;
   int layers = 0, coarsenings = 0;
   AmgHierarchy amg = AmgHierarchy::standard;  // the hierarchy the block used
+  LinearSolver solver = LinearSolver::amg;    // the linear solver the block used
   double wall_setup = 0;  // s, mesh and assembly
   std::size_t face_nx = 0, face_ny = 0;  // face nodes per row, rows
   double face_spacing = 0, rms_slope = 0, e_star = 0;

@@ -10,10 +10,12 @@ ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
   impl_->make_grid();
   impl_->amg = resolve_amg_hierarchy(spec.amg, nodes_on_this_host(impl_->comm, double(impl_->mesh->nodes())),
                                      double(physical_memory_bytes()));
+  impl_->solver = resolve_linear_solver(spec.solver, double(impl_->mesh->nodes()));
   impl_->assemble();
 }
 
 AmgHierarchy ElasticBlock::amg_hierarchy() const { return impl_->amg; }
+LinearSolver ElasticBlock::linear_solver() const { return impl_->solver; }
 
 ElasticBlock::~ElasticBlock() {
   if (impl_->face_scatter) VecScatterDestroy(&impl_->face_scatter);

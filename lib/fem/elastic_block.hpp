@@ -24,6 +24,7 @@
 #include "lib/contact/periodic_obstacle.hpp"
 #include "lib/contact/smooth_obstacle.hpp"
 #include "lib/fem/amg_hierarchy.hpp"
+#include "lib/fem/linear_solver.hpp"
 #include "lib/fem/graded_mesh.hpp"
 
 namespace wr {
@@ -39,6 +40,8 @@ struct BlockSpec {
   // not fit in this host's memory. PETSc options given by the user (-pc_gamg_agg_nsmooths,
   // -matptap_via) win over either.
   AmgHierarchy amg = AmgHierarchy::automatic;
+  // Sparse Cholesky or AMG (linear_solver.hpp); automatic: by the block's node count.
+  LinearSolver solver = LinearSolver::automatic;
 };
 
 enum class TopCondition { fixed, frictionless };  // top face: all components prescribed, or only z
@@ -167,7 +170,8 @@ class ElasticBlock {
   // resolves it, and the Signorini iteration of the fine mesh is left the short-waved rest.
   void add_lifted_face_field(const std::vector<double>& field, int fnx, int fny);
   std::size_t nodes() const;  // independent nodes
-  AmgHierarchy amg_hierarchy() const;  // the one in use: standard or lean, never automatic
+  AmgHierarchy amg_hierarchy() const;
+  LinearSolver linear_solver() const;  // the one in use: direct or amg, never automatic  // the one in use: standard or lean, never automatic
   const GradedMesh& mesh() const;
   std::size_t dofs() const { return 3 * nodes(); }
 

@@ -116,6 +116,7 @@ struct ElasticBlock::Impl {
   BlockSpec spec;
   MPI_Comm comm = MPI_COMM_NULL;
   AmgHierarchy amg = AmgHierarchy::standard;  // spec.amg resolved for this mesh and host
+  LinearSolver solver = LinearSolver::amg;     // spec.solver resolved for this mesh
   std::unique_ptr<GradedMesh> mesh;
   int rank = 0;
   PetscInt own_begin = 0, own_end = 0;  // owned node ids
@@ -213,7 +214,7 @@ struct ElasticBlock::Impl {
     int first_its = -1;                 // CG iterations with a fresh preconditioner
     // Lean hierarchy: PtAP all at once (no symbolic scratch), for as long as these systems live.
     std::unique_ptr<ScopedDefaultOption> ptap_option;
-    LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg);
+    LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg, LinearSolver solver);
     ~LinearSystems();
     LinearSystems(const LinearSystems&) = delete;
     LinearSystems& operator=(const LinearSystems&) = delete;

@@ -60,15 +60,27 @@ ElasticBlock::Impl::TopBoundary ElasticBlock::Impl::prescribe_top(const ContactL
   return t;
 }
 
-ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg)
+ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg,
+                                                 LinearSolver solver)
     : q_all(9 * face_nodes), q_mine(q_all.size()) {
   for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) check(VecDuplicate(like, v), "VecDuplicate");
   check(KSPCreate(comm, &ksp), "KSPCreate");
   check(KSPSetType(ksp, KSPCG), "KSPSetType");
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCGAMG), "PCSetType");
   check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  if (solver == LinearSolver::direct) {
+    // Sparse Cholesky: CHOLMOD (SuiteSparse) where the matrix lives on one rank, MUMPS across
+    // ranks. CG around it converges in one iteration, and the reuse policy of the active-set
+    // loop keeps the factor as the preconditioner of the next, slightly different, system.
+    int ranks = 1;
+    MPI_Comm_size(comm, &ranks);
+    check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, ranks == 1 ? MATSOLVERCHOLMOD : MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+    return;
+  }
+  check(PCSetType(pc, PCGAMG), "PCSetType");
   // Chebyshev smoothers with eigenvalue bounds estimated by the smoothed-aggregation step came
   // out too low on rough-surface systems (KSP_DIVERGED_INDEFINITE_PC at tight tolerances):
   // estimate them per level, with a wider safety margin. Options given by the user win.

@@ -11,14 +11,17 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   std::vector<FaceNode> face = m.owned_face_nodes();
   if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
   const Impl::TopBoundary top = m.prescribe_top(load);
-  Impl::LinearSystems s(m.comm, m.u, out.face_nodes, m.amg);
+  // Newton's systems can be indefinite (the softening part of the constraints' curvature): CG
+  // detects that and the cut is applied; a Cholesky factorisation would fail (CHOLMOD) or hide
+  // it (MUMPS's LDL^T). So Newton always takes the AMG path.
+  // Newton on the C2 obstacle (ContactLoad::smooth): full steps, none of the fixed-point
+  // iteration's devices (damping, jumps).
+  const bool newton = load.follow_geometry && load.smooth;
+  Impl::LinearSystems s(m.comm, m.u, out.face_nodes, m.amg, newton ? LinearSolver::amg : m.solver);
 
   // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
   // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led
   // a shear step to a state 1.4x deeper in the obstacle than allowed. Blend normals only.
-  // Newton on the C2 obstacle (ContactLoad::smooth): full steps, none of the fixed-point
-  // iteration's devices (damping, jumps).
-  const bool newton = load.follow_geometry && load.smooth;
   if (newton && m.lambda.size() != face.size()) m.lambda.assign(face.size(), 0.0);
   Impl::CurvatureScales curvature;
   curvature.on = newton;

@@ -49,6 +49,7 @@ ContactTestOptions block_options(const ContactScene& s) {
   o.facet_band = s.facet_band;
   o.block_normals = s.block_normals;
   o.amg = s.amg;
+  o.solver = s.solver;
   return o;
 }
 
@@ -60,6 +61,9 @@ void check_contact_scene(const ContactScene& s) {
     throw InputError("--to-peak", "shears the FEM block until mu turns over: needs --model fem and the shear problem");
   if (s.model == ContactModel::analytic && s.shear)
     throw InputError("--model", "the analytic model has no shear test; use fem or spectral");
+  if (s.solver == LinearSolver::direct && s.iteration == ContactIteration::newton)
+    throw InputError("--solver", "direct (Cholesky) needs positive definite systems; Newton's can be indefinite: "
+                                 "use --solver amg or auto with --iteration newton");
   if (!(s.pressure >= 0 && std::isfinite(s.pressure))) throw InputError("--pressure", "must be a finite pressure >= 0 Pa");
   const bool load_control = s.model != ContactModel::fem && s.pressure > 0;
   check_shared_contact_options({s.shear, !load_control, s.uz, s.ux, s.normal_steps, s.shear_steps, s.refine, s.young,
@@ -281,7 +285,8 @@ nlohmann::json contact_scene_json(const ContactScene& s) {
           {"iteration", contact_iteration_name(s.iteration)},
           {"curvature", s.curvature},
           {"block_normals", s.block_normals},
-          {"amg", amg_hierarchy_name(s.amg)}};
+          {"amg", amg_hierarchy_name(s.amg)},
+          {"solver", linear_solver_name(s.solver)}};
 }
 
 }  // namespace wr

@@ -19,6 +19,7 @@
 #include "lib/core/fft.hpp"
 #include "lib/core/height_map.hpp"
 #include "lib/fem/amg_hierarchy.hpp"
+#include "lib/fem/linear_solver.hpp"
 #include "lib/fem/block_press_shear.hpp"
 #include "lib/spectral/spectral_press_shear.hpp"
 
@@ -65,6 +66,7 @@ struct ContactScene {
   double curvature = 1.0;       // FEM Newton: scale of the constraints' second-order term
   double block_normals = 0;   // > 0: the block's own normals, relaxed so (experimental)
   AmgHierarchy amg = AmgHierarchy::automatic;
+  LinearSolver solver = LinearSolver::automatic;  // FEM: sparse Cholesky or AMG-preconditioned CG
 };
 
 // The grid a model runs on, known once it is set up (for a caller that prints it first).

@@ -1,0 +1,27 @@
+#include "lib/fem/linear_solver.hpp"
+
+#include "lib/core/errors.hpp"
+
+namespace wr {
+
+LinearSolver resolve_linear_solver(LinearSolver requested, double nodes) {
+  if (requested != LinearSolver::automatic) return requested;
+  return nodes <= kDirectSolverMaxNodes ? LinearSolver::direct : LinearSolver::amg;
+}
+
+LinearSolver parse_linear_solver(const std::string& text, const std::string& option) {
+  if (text == "auto") return LinearSolver::automatic;
+  if (text == "direct") return LinearSolver::direct;
+  if (text == "amg") return LinearSolver::amg;
+  throw InputError(option, "must be auto, direct or amg (got '" + text + "')");
+}
+
+const char* linear_solver_name(LinearSolver s) {
+  switch (s) {
+    case LinearSolver::direct: return "direct";
+    case LinearSolver::amg: return "amg";
+    default: return "auto";
+  }
+}
+
+}  // namespace wr

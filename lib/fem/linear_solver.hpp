@@ -1,0 +1,28 @@
+#pragma once
+// Which linear solver the FEM's CG uses in its active-set solves: a sparse Cholesky
+// factorisation (SuiteSparse CHOLMOD through PETSc on one rank; MUMPS across ranks, CHOLMOD
+// being sequential) or the AMG preconditioner (amg_hierarchy.hpp). A factorisation makes CG
+// exact in one iteration and is reused as the preconditioner of the next active set, like the
+// AMG hierarchy; its cost grows faster than linearly with the block (fill-in of a 3-D mesh),
+// so beyond a crossover the AMG wins. automatic chooses by the block's node count against that
+// crossover, measured (docs/performance.md "Direct or AMG").
+#include <string>
+
+namespace wr {
+
+enum class LinearSolver { automatic, direct, amg };
+
+// Newton's systems (--iteration newton) always take the AMG path: they can be indefinite, which
+// CG detects and a Cholesky factorisation does not tolerate.
+// automatic: direct up to this many independent nodes (all ranks together), AMG above.
+// `wetroad bench fem-solver` (docs/performance.md, 2026-12-06).
+inline constexpr double kDirectSolverMaxNodes = 40000;
+
+// `requested` unless it is automatic; then direct for nodes <= kDirectSolverMaxNodes.
+LinearSolver resolve_linear_solver(LinearSolver requested, double nodes);
+
+// "auto", "direct", "amg"; InputError(option, ...) for anything else.
+LinearSolver parse_linear_solver(const std::string& text, const std::string& option);
+const char* linear_solver_name(LinearSolver s);
+
+}  // namespace wr
