@@ -133,32 +133,56 @@ TEST(AmgHierarchy, AutomaticIsStandardWhereItFitsAndLeanBeyond) {
   EXPECT_THROW(parse_amg_hierarchy("smoothed", "--amg"), InputError);
 }
 
+TEST(LinearSolver, AutomaticIsDirectOnSmallOneRankBlocksOnly) {
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e4, 1), LinearSolver::direct);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e4, 2), LinearSolver::amg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 10 * kDirectSolverMaxNodes, 1), LinearSolver::amg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::direct, 1e7, 2), LinearSolver::direct);
+  EXPECT_EQ(parse_linear_solver("direct", "--solver"), LinearSolver::direct);
+  EXPECT_THROW(parse_linear_solver("cholmod", "--solver"), InputError);
+}
+
 // The lean hierarchy changes how CG gets there, not where: on the cap the contact state agrees
 // with the standard hierarchy's to solver tolerance, a flat obstacle still gives uniaxial
 // compression exactly, and the all-at-once PtAP default does not outlive the lean solve.
-TEST(Fem, LeanAmgHierarchyReachesTheSameContactState) {
+// AMG-preconditioned CG with either hierarchy and the sparse Cholesky factorisation (CHOLMOD on
+// one rank, MUMPS on two) solve the same systems: the same contact state to the tolerances.
+TEST(Fem, EveryLinearSolverReachesTheSameContactState) {
   const PeriodicObstacle cap(paraboloid_cap(48, 0.03, 0.05));
-  ContactSolution by[2];
-  for (AmgHierarchy h : {AmgHierarchy::standard, AmgHierarchy::lean}) {
+  struct Choice {
+    AmgHierarchy amg;
+    LinearSolver solver;
+  };
+  const Choice choices[] = {{AmgHierarchy::standard, LinearSolver::amg},
+                            {AmgHierarchy::lean, LinearSolver::amg},
+                            {AmgHierarchy::standard, LinearSolver::direct}};
+  ContactSolution by[3];
+  for (int k = 0; k < 3; ++k) {
     BlockSpec b;
     b.mesh.nx = b.mesh.ny = 12;
-    b.amg = h;
+    b.amg = choices[k].amg;
+    b.solver = choices[k].solver;
     ElasticBlock block(b);
-    EXPECT_EQ(block.amg_hierarchy(), h);
+    EXPECT_EQ(block.amg_hierarchy(), choices[k].amg);
+    EXPECT_EQ(block.linear_solver(), choices[k].solver);
     ContactLoad load;
     load.obstacle = &cap;
     load.uz = 1e-4;
     load.tolerance = 1e-8;
     load.ksp_rtol = 1e-11;
-    by[h == AmgHierarchy::lean] = block.solve(load);
-    ASSERT_TRUE(by[h == AmgHierarchy::lean].converged) << by[h == AmgHierarchy::lean].message;
+    by[k] = block.solve(load);
+    ASSERT_TRUE(by[k].converged) << by[k].message;
     PetscBool left = PETSC_FALSE;
     PetscOptionsHasName(nullptr, nullptr, "-matptap_via", &left);
-    EXPECT_FALSE(left) << amg_hierarchy_name(h);
+    EXPECT_FALSE(left) << amg_hierarchy_name(choices[k].amg);
   }
-  EXPECT_NEAR(by[1].fz / by[0].fz, 1.0, 1e-6);
-  EXPECT_EQ(by[1].contact_nodes, by[0].contact_nodes);
-  EXPECT_LT(by[1].max_penetration, 1e-7);
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_NEAR(by[k].fz / by[0].fz, 1.0, 1e-6) << k;
+    EXPECT_EQ(by[k].contact_nodes, by[0].contact_nodes) << k;
+    EXPECT_LT(by[k].max_penetration, 1e-7) << k;
+  }
+  // The factorisation is exact: CG stops after one iteration per system it is fresh for.
+  EXPECT_LT(by[2].linear_iterations, by[0].linear_iterations);
 
   BlockSpec b;
   b.mesh.nx = 16;

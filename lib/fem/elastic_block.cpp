@@ -10,7 +10,9 @@ ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
   impl_->make_grid();
   impl_->amg = resolve_amg_hierarchy(spec.amg, nodes_on_this_host(impl_->comm, double(impl_->mesh->nodes())),
                                      double(physical_memory_bytes()));
-  impl_->solver = resolve_linear_solver(spec.solver, double(impl_->mesh->nodes()));
+  int ranks = 1;
+  MPI_Comm_size(impl_->comm, &ranks);
+  impl_->solver = resolve_linear_solver(spec.solver, double(impl_->mesh->nodes()), ranks);
   impl_->assemble();
 }
 

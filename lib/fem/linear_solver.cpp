@@ -4,9 +4,9 @@
 
 namespace wr {
 
-LinearSolver resolve_linear_solver(LinearSolver requested, double nodes) {
+LinearSolver resolve_linear_solver(LinearSolver requested, double nodes, int ranks) {
   if (requested != LinearSolver::automatic) return requested;
-  return nodes <= kDirectSolverMaxNodes ? LinearSolver::direct : LinearSolver::amg;
+  return ranks == 1 && nodes <= kDirectSolverMaxNodes ? LinearSolver::direct : LinearSolver::amg;
 }
 
 LinearSolver parse_linear_solver(const std::string& text, const std::string& option) {

@@ -14,12 +14,13 @@ enum class LinearSolver { automatic, direct, amg };
 
 // Newton's systems (--iteration newton) always take the AMG path: they can be indefinite, which
 // CG detects and a Cholesky factorisation does not tolerate.
-// automatic: direct up to this many independent nodes (all ranks together), AMG above.
-// `wetroad bench fem-solver` (docs/performance.md, 2026-12-06).
-inline constexpr double kDirectSolverMaxNodes = 40000;
+// automatic: direct up to this many independent nodes on one rank, AMG above and on several
+// ranks (MUMPS, the parallel factorisation, is not measured to win there).
+// scripts/bench-fem-solver.sh (docs/performance.md "Direct or AMG", 2026-12-06).
+inline constexpr double kDirectSolverMaxNodes = 20000;
 
-// `requested` unless it is automatic; then direct for nodes <= kDirectSolverMaxNodes.
-LinearSolver resolve_linear_solver(LinearSolver requested, double nodes);
+// `requested` unless it is automatic; then direct for ranks == 1 and nodes <= kDirectSolverMaxNodes.
+LinearSolver resolve_linear_solver(LinearSolver requested, double nodes, int ranks);
 
 // "auto", "direct", "amg"; InputError(option, ...) for anything else.
 LinearSolver parse_linear_solver(const std::string& text, const std::string& option);
