@@ -13,6 +13,7 @@
 
 #include "lib/core/errors.hpp"
 #include "lib/core/memory_guard.hpp"
+#include "roads/text_records.hpp"
 
 namespace wr {
 namespace {
@@ -74,15 +75,22 @@ GriddedCloud grid_point_cloud(const std::vector<CloudPoint>& points, const Point
     x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
     sites.emplace_back(Point2(p.x, p.y), p.z);
   }
-  const std::size_t nx = std::size_t(std::floor((x1 - x0) / opt.dx * (1 + 1e-12))) + 1;
-  const std::size_t ny = std::size_t(std::floor((y1 - y0) / dy * (1 + 1e-12))) + 1;
-  if (nx < 2 || ny < 2)
+  // Node counts in floating point first: a span of 1e98 m must not overflow the cast.
+  const double fnx = std::floor((x1 - x0) / opt.dx * (1 + 1e-12)) + 1, fny = std::floor((y1 - y0) / dy * (1 + 1e-12)) + 1;
+  if (fnx < 2 || fny < 2)
     throw InputError(source, "the points span " + num(x1 - x0) + " x " + num(y1 - y0) + " m: under two grid spacings");
+  // A grid far finer than the cloud is all interpolation (and, at millions of nodes per point,
+  // a unit or spacing given wrong): refuse it before allocating.
+  if (!(fnx * fny <= kMaxNodesPerPoint * double(points.size())))
+    throw InputError(source, "--dx " + num(opt.dx) + " m makes " + num(fny) + " x " + num(fnx) + " grid nodes for " +
+                                 std::to_string(points.size()) + " points: give a spacing near the points' own (their extent is " +
+                                 num(x1 - x0) + " x " + num(y1 - y0) + " m; check --unit)");
+  const std::size_t nx = std::size_t(fnx), ny = std::size_t(fny);
   const std::size_t cells = checked_cells(nx, ny, source);
   require_memory(cells, sizeof(double), 6.0, source, "gridding this point cloud");
 
-  // Spatially sorted insertion (CGAL's range constructor) keeps the walk short; the first
-  // point at a repeated (x, y) keeps its z.
+  // Spatially sorted insertion (CGAL's range constructor) keeps the walk short; of points at a
+  // repeated (x, y) one keeps its z.
   const Delaunay dt(sites.begin(), sites.end());
   if (dt.dimension() < 2) throw InputError(source, "the points lie on one line in x, y: no surface to grid");
 
@@ -133,34 +141,20 @@ std::vector<CloudPoint> read_point_cloud_text(const std::string& path, double un
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open");
   std::vector<CloudPoint> pts;
-  std::string line;
-  std::size_t lineno = 0;
-  bool header_allowed = true;
-  while (std::getline(in, line)) {
-    ++lineno;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    for (char& c : line)
-      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
-    std::istringstream ls(line);
-    std::string tok;
+  std::size_t lineno = 0, records = 0;
+  std::vector<std::string> fields;
+  while (next_text_record(in, fields, lineno)) {
+    ++records;
     double v[3];
-    int n = 0;
-    bool numeric = true;
-    while (n < 3 && ls >> tok) {
-      char* end = nullptr;
-      v[n] = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || *end != '\0') {
-        numeric = false;
-        break;
-      }
-      ++n;
+    std::size_t n = 0;
+    for (; n < 3 && n < fields.size(); ++n) {
+      const std::optional<double> x = parse_number(fields[n]);
+      if (!x) break;
+      v[n] = *x;
     }
-    if (!numeric && header_allowed && pts.empty()) {  // a line of column names
-      header_allowed = false;
-      continue;
-    }
-    if (!numeric) throw InputError(path, "line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
+    const bool numeric = n == std::min<std::size_t>(3, fields.size());
+    if (!numeric && records == 1) continue;  // a line of column names
+    if (!numeric) throw InputError(path, "line " + std::to_string(lineno) + ": '" + fields[n] + "' is not a number");
     if (n < 3)
       throw InputError(path, "line " + std::to_string(lineno) + " has " + std::to_string(n) +
                                  " values; a point cloud needs x y z on every line");

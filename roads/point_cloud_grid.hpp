@@ -39,6 +39,10 @@ struct PointCloudGridOptions {
 // hole wider than 5 spacings and leaves ordinary sampling gaps alone.
 inline constexpr double kDefaultGapSpacings = 5.0;
 
+// Refused: a grid with more nodes than this per point (100 times finer than the cloud along
+// each side): everything but the points would be interpolated.
+inline constexpr double kMaxNodesPerPoint = 1e4;
+
 struct GriddedCloud {
   HeightMap map;                 // NaN at dropouts; kind map, periodic false
   std::size_t points = 0;        // points read
@@ -52,8 +56,8 @@ struct GriddedCloud {
 };
 
 // Grids `points`. InputError(source, ...) for fewer than 3 points, non-finite coordinates,
-// points all on one line in (x, y), a non-positive spacing or max_gap, or a grid that would
-// not fit in memory.
+// points all on one line in (x, y), a non-positive spacing or max_gap, a grid of more than
+// kMaxNodesPerPoint nodes per point, or one that would not fit in memory.
 GriddedCloud grid_point_cloud(const std::vector<CloudPoint>& points, const PointCloudGridOptions& opt,
                               const std::string& source);
 

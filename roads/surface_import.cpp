@@ -15,6 +15,7 @@
 #include "lib/core/memory_guard.hpp"
 #include "lib/io/hdf5_file.hpp"
 #include "roads/point_cloud_grid.hpp"
+#include "roads/text_records.hpp"
 #include "roads/x3p_file.hpp"
 
 namespace wr {
@@ -138,28 +139,17 @@ LoadedSurface load_text(const std::string& path, const TextGridOptions& opt) {
   require_memory(file_bytes / 2 + 1, sizeof(double), kAnalysisCopies, path, "reading this text grid");
   std::vector<double> values;
   std::size_t cols = 0, rows = 0, lineno = 0;
-  std::string line;
-  while (std::getline(in, line)) {
-    ++lineno;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    for (char& c : line)
-      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
-    std::istringstream ls(line);
-    std::string tok;
-    std::size_t n = 0;
-    while (ls >> tok) {
-      char* end = nullptr;
-      const double v = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || *end != '\0')
-        throw InputError(path, "line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
-      values.push_back(v);
-      ++n;
+  std::vector<std::string> fields;
+  while (next_text_record(in, fields, lineno)) {
+    for (const std::string& tok : fields) {
+      const std::optional<double> v = parse_number(tok);
+      if (!v) throw InputError(path, "line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
+      values.push_back(*v);
     }
     if (rows == 0)
-      cols = n;
-    else if (n != cols)
-      throw InputError(path, "line " + std::to_string(lineno) + " has " + std::to_string(n) +
+      cols = fields.size();
+    else if (fields.size() != cols)
+      throw InputError(path, "line " + std::to_string(lineno) + " has " + std::to_string(fields.size()) +
                                  " values, the first row has " + std::to_string(cols));
     ++rows;
   }
@@ -269,44 +259,56 @@ std::size_t fill_dropouts(HeightMap& m) {
     }
     return missing;
   }
-  BigVector next = m.h;
-  std::size_t left = missing;
-  while (left > 0) {
-    std::size_t filled = 0;
-    for (std::size_t iy = 0; iy < m.ny; ++iy) {
-      for (std::size_t ix = 0; ix < m.nx; ++ix) {
-        if (std::isfinite(m(ix, iy))) continue;
-        double s = 0;
-        int n = 0;
-        auto take = [&](long jx, long jy) {
-          if (m.periodic) {
-            jx = (jx + long(m.nx)) % long(m.nx);
-            jy = (jy + long(m.ny)) % long(m.ny);
-          } else if (jx < 0 || jy < 0 || jx >= long(m.nx) || jy >= long(m.ny)) {
-            return;
-          }
-          const double v = m(std::size_t(jx), std::size_t(jy));
-          if (std::isfinite(v)) {
-            s += 0.25 * v;  // a quarter each: the sum of four near DBL_MAX stays finite
-            ++n;
-          }
-        };
-        take(long(ix) - 1, long(iy));
-        take(long(ix) + 1, long(iy));
-        take(long(ix), long(iy) - 1);
-        take(long(ix), long(iy) + 1);
-        if (n > 0) {
-          next[iy * m.nx + ix] = s * (4.0 / n);
-          ++filled;
-        }
+  // Layer by layer, visiting only the layer's cells (the dropouts next to a filled or valid
+  // cell): linear in the map's size however deep the holes (a sparse point cloud's grid is
+  // mostly hole). Each layer is computed from the state before it, then written.
+  const long nx = long(m.nx), ny = long(m.ny);
+  auto neighbour = [&](std::size_t c, int d) -> long {  // -x, +x, -y, +y; -1 beyond an open edge
+    long jx = long(c % m.nx) + (d == 0 ? -1 : d == 1 ? 1 : 0), jy = long(c / m.nx) + (d == 2 ? -1 : d == 3 ? 1 : 0);
+    if (m.periodic) {
+      jx = (jx + nx) % nx;
+      jy = (jy + ny) % ny;
+    } else if (jx < 0 || jy < 0 || jx >= nx || jy >= ny) {
+      return -1;
+    }
+    return jy * nx + jx;
+  };
+  std::vector<unsigned char> queued(m.h.size(), 0);
+  std::vector<std::size_t> layer, next;
+  auto enqueue_dropout_neighbours = [&](std::size_t c) {
+    for (int d = 0; d < 4; ++d) {
+      const long k = neighbour(c, d);
+      if (k >= 0 && !queued[std::size_t(k)] && !std::isfinite(m.h[std::size_t(k)])) {
+        queued[std::size_t(k)] = 1;
+        next.push_back(std::size_t(k));
       }
     }
-    m.h = next;
-    // Each pass fills at least the hole's rim (the map has a valid sample); a pass that fills
-    // nothing would loop forever, so it cannot be allowed to pass silently.
-    if (filled == 0 || filled > left) throw std::logic_error("fill_dropouts made no progress");
-    left -= filled;
+  };
+  for (std::size_t c = 0; c < m.h.size(); ++c)
+    if (std::isfinite(m.h[c])) enqueue_dropout_neighbours(c);
+  std::vector<double> value;
+  std::size_t left = missing;
+  while (!next.empty()) {
+    layer.swap(next);
+    next.clear();
+    value.assign(layer.size(), 0.0);
+    for (std::size_t k = 0; k < layer.size(); ++k) {
+      double s = 0;
+      int n = 0;
+      for (int d = 0; d < 4; ++d) {
+        const long j = neighbour(layer[k], d);
+        if (j < 0 || !std::isfinite(m.h[std::size_t(j)])) continue;
+        s += 0.25 * m.h[std::size_t(j)];  // a quarter each: the sum of four near DBL_MAX stays finite
+        ++n;
+      }
+      value[k] = s * (4.0 / n);  // n >= 1: each cell of a layer touches a valid or filled one
+    }
+    for (std::size_t k = 0; k < layer.size(); ++k) m.h[layer[k]] = value[k];
+    for (std::size_t c : layer) enqueue_dropout_neighbours(c);
+    if (layer.size() > left) throw std::logic_error("fill_dropouts filled a cell twice");
+    left -= layer.size();
   }
+  if (left != 0) throw std::logic_error("fill_dropouts left a hole unreached");
   return missing;
 }
 

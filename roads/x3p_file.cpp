@@ -1,6 +1,7 @@
 #include "roads/x3p_file.hpp"
 
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -8,11 +9,11 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <cctype>
 
 #include <pugixml.hpp>
 #include <zip.h>
@@ -50,6 +51,15 @@ class ZipReader {
   ZipReader& operator=(const ZipReader&) = delete;
 
   bool has(const std::string& name) const { return zip_name_locate(za_, name.c_str(), 0) >= 0; }
+
+  // The entry's size as the directory states it; InputError when there is no such entry.
+  std::size_t size(const std::string& name) const {
+    zip_stat_t st;
+    zip_stat_init(&st);
+    if (zip_stat(za_, name.c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
+      throw InputError(path_, "the X3P archive has no " + name);
+    return std::size_t(st.size);
+  }
 
   // The whole entry; a CRC mismatch (a damaged archive) surfaces as a read error.
   std::string read(const std::string& name) const {
@@ -139,6 +149,24 @@ Axis read_axis(const XmlContext& x, pugi::xml_node axes, const char* name) {
 
 std::size_t type_bytes(char t) { return t == 'I' ? 2 : (t == 'L' || t == 'F') ? 4 : 8; }
 
+// The data hold as many points as the matrix declares: checked before the map is allocated,
+// so that a small archive declaring a huge matrix costs nothing.
+void check_point_count(const XmlContext& x, const ZipReader& zip, pugi::xml_node rec3, char type, std::size_t n) {
+  if (pugi::xml_node link = rec3.child("DataLink")) {
+    const std::string name = x.text(link, "PointDataLink");
+    const std::size_t bytes = zip.size(name);
+    if (bytes / type_bytes(type) != n || bytes % type_bytes(type) != 0)
+      x.fail(name + " holds " + std::to_string(bytes) + " bytes; " + std::to_string(n) + " points of type " + type +
+             " need " + std::to_string(n * type_bytes(type)));
+    return;
+  }
+  pugi::xml_node list = rec3.child("DataList");
+  if (!list) x.fail("Record3 has neither DataLink nor DataList");
+  const auto data = list.children("Datum");
+  const std::size_t count = std::size_t(std::distance(data.begin(), data.end()));
+  if (count != n) x.fail("DataList holds " + std::to_string(count) + " points, MatrixDimension " + std::to_string(n));
+}
+
 // Little-endian raw value at point i, whatever the host's byte order.
 double raw_value(const unsigned char* p, char t) {
   std::uint64_t u = 0;
@@ -164,11 +192,8 @@ void read_points(const XmlContext& x, const ZipReader& zip, pugi::xml_node rec3,
   const std::size_t n = m.h.size();
   if (pugi::xml_node link = rec3.child("DataLink")) {
     const std::string name = x.text(link, "PointDataLink");
-    const std::string data = zip.read(name);
+    const std::string data = zip.read(name);  // its size checked by check_point_count
     const std::size_t width = type_bytes(cz.data);
-    if (data.size() != n * width)
-      x.fail(name + " holds " + std::to_string(data.size()) + " bytes; " + std::to_string(n) + " points of type " +
-             cz.data + " need " + std::to_string(n * width));
     check_md5(x, link, "MD5ChecksumPointData", data, name);
     const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
     for (std::size_t i = 0; i < n; ++i) m.h[i] = cz.offset + cz.increment * raw_value(bytes + i * width, cz.data);
@@ -184,11 +209,8 @@ void read_points(const XmlContext& x, const ZipReader& zip, pugi::xml_node rec3,
     }
     return;
   }
-  pugi::xml_node list = rec3.child("DataList");
-  if (!list) x.fail("Record3 has neither DataLink nor DataList");
-  std::size_t i = 0;
-  for (pugi::xml_node d = list.child("Datum"); d; d = d.next_sibling("Datum"), ++i) {
-    if (i >= n) x.fail("DataList holds more than the " + std::to_string(n) + " points of MatrixDimension");
+  std::size_t i = 0;  // as many Datum as points: check_point_count
+  for (pugi::xml_node d = rec3.child("DataList").child("Datum"); d; d = d.next_sibling("Datum"), ++i) {
     const std::string t = trimmed(d.child_value());
     if (t.empty()) {  // an empty Datum is an invalid point
       m.h[i] = std::numeric_limits<double>::quiet_NaN();
@@ -199,7 +221,6 @@ void read_points(const XmlContext& x, const ZipReader& zip, pugi::xml_node rec3,
     if (*end != '\0') x.fail("Datum " + std::to_string(i + 1) + " is not one number: '" + t + "'");
     m.h[i] = cz.offset + cz.increment * v;
   }
-  if (i != n) x.fail("DataList holds " + std::to_string(i) + " points, MatrixDimension " + std::to_string(n));
 }
 
 // main.xml's own checksum (Record4): a mismatch is an error, a missing file a warning.
@@ -264,6 +285,7 @@ X3pContents read_x3p(const std::string& path) {
   if (sz != 1) x.fail("SizeZ = " + std::to_string(sz) + ": several layers are not supported");
   if (profile && sy != 1) x.fail("a profile (PRF) must have SizeY = 1, got " + std::to_string(sy));
   const std::size_t cells = checked_cells(sx, sy, path);
+  check_point_count(x, zip, rec3, cz.data, cells);
   require_memory(cells, sizeof(double), 6.0, path, "reading this X3P surface");
   HeightMap& m = out.map;
   m = HeightMap(sx, sy, cx.increment, profile ? cx.increment : cy.increment,

@@ -123,6 +123,8 @@ TEST(PointCloud, RefusesWhatIsNoSurface) {
   EXPECT_THROW(wr::grid_point_cloud({{0, 0, 0}, {0.01, 0, 0}, {0, 0.01, NAN}}, opt, "f"), wr::InputError);
   opt.dx = 0;
   EXPECT_THROW(wr::grid_point_cloud({{0, 0, 0}, {0.01, 0, 0}, {0, 0.01, 0}}, opt, "f"), wr::InputError);
+  opt.dx = 1e-3;  // 22 km of cloud on a 1 mm grid: 2e7 nodes for 4 points (a unit left out)
+  EXPECT_THROW(wr::grid_point_cloud({{0, 0, 0}, {0.01, 0, 0}, {0, 22e3, 0}, {0.01, 22e3, 0}}, opt, "f"), wr::InputError);
 }
 
 class PointCloudCli : public wr_test::Cli {};

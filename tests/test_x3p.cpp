@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -217,26 +218,23 @@ TEST_F(X3p, BadArchivesAreRefusedInOneLine) {
   }
   make_zip(path("nomain.x3p"), {{"bindata/data.bin", ok.data}});
   expect_bad_input(path("nomain.x3p"), "no main.xml");
-  HandMade bad = valid_map();
-  bad.corrupt_main_checksum = true;
-  bad.write(path("sum.x3p"));
-  expect_bad_input(path("sum.x3p"), "checksum mismatch");
-  bad = valid_map();
-  bad.corrupt_data_checksum = true;
-  bad.write(path("datasum.x3p"));
-  expect_bad_input(path("datasum.x3p"), "bindata/data.bin checksum mismatch");
-  bad = valid_map();
-  bad.feature = "PCL";
-  bad.write(path("pcl.x3p"));
-  expect_bad_input(path("pcl.x3p"), "feature type PCL");
-  bad = valid_map();
-  bad.sx = 5;  // the data hold 12 points, the matrix says 15
-  bad.write(path("size.x3p"));
-  expect_bad_input(path("size.x3p"), "need 120");
-  bad = valid_map();
-  bad.type = "Q";
-  bad.write(path("type.x3p"));
-  expect_bad_input(path("type.x3p"), "data type 'Q'");
+  const struct {
+    const char* file;
+    std::function<void(HandMade&)> spoil;
+    const char* says;
+  } cases[] = {
+      {"sum.x3p", [](HandMade& f) { f.corrupt_main_checksum = true; }, "checksum mismatch"},
+      {"datasum.x3p", [](HandMade& f) { f.corrupt_data_checksum = true; }, "bindata/data.bin checksum mismatch"},
+      {"pcl.x3p", [](HandMade& f) { f.feature = "PCL"; }, "feature type PCL"},
+      {"size.x3p", [](HandMade& f) { f.sx = 5; }, "need 120"},  // 12 points held, 15 declared
+      {"type.x3p", [](HandMade& f) { f.type = "Q"; }, "data type 'Q'"},
+  };
+  for (const auto& c : cases) {
+    HandMade bad = valid_map();
+    c.spoil(bad);
+    bad.write(path(c.file));
+    expect_bad_input(path(c.file), c.says);
+  }
 }
 
 // Without a checksum file the data are read, with a warning that main.xml was not verified.
