@@ -125,6 +125,7 @@ TEST(PointCloud, RefusesWhatIsNoSurface) {
   EXPECT_THROW(wr::grid_point_cloud({{0, 0, 0}, {0.01, 0, 0}, {0, 0.01, 0}}, opt, "f"), wr::InputError);
   opt.dx = 1e-3;  // 22 km of cloud on a 1 mm grid: 2e7 nodes for 4 points (a unit left out)
   EXPECT_THROW(wr::grid_point_cloud({{0, 0, 0}, {0.01, 0, 0}, {0, 22e3, 0}, {0.01, 22e3, 0}}, opt, "f"), wr::InputError);
+  EXPECT_THROW(wr::grid_point_cloud({{0, 0, 0}, {1e98, 0, 0}, {0, 1, 0}}, opt, "f"), wr::InputError);  // found by the fuzzer
 }
 
 class PointCloudCli : public wr_test::Cli {};
