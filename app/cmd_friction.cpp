@@ -14,6 +14,7 @@
 #include "lib/io/output_set.hpp"
 #include "reports/plot.hpp"
 #include "roads/surface_import.hpp"
+#include "roads/x3p_file.hpp"
 #include "wetroad/version.hpp"
 
 namespace wr::app {
@@ -41,6 +42,8 @@ std::vector<double> log_speeds(const std::vector<double>& range) {
 
 // The fraction of the wet file's area under water (/water_depth > 0), and its wet surface.
 double coverage_of(const std::string& path) {
+  if (looks_like_zip(path))
+    throw InputError(path, "an X3P file holds the wet surface only; --wet takes the HDF5 output of `wetroad fill`");
   Hdf5Reader r(path);
   if (!r.has_dataset("/water_depth"))
     throw InputError(path, "no /water_depth: --wet takes the output of `wetroad fill`");
@@ -136,6 +139,7 @@ int run_friction_command(const FrictionCli& c) {
 
   const LoadedSurface dry = load_surface(c.input);
   print_load_warnings(dry);
+  if (!c.quiet) std::printf("read %s\n  %s\n", c.input.c_str(), describe_import(dry).c_str());
   std::optional<LoadedSurface> wet_map;
   std::optional<WetSurface> wet;
   if (!c.wet.empty()) {

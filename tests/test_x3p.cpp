@@ -264,6 +264,11 @@ TEST_F(X3p, SynthAndFillWriteX3p) {
   const wr::LoadedSurface wh = wr::load_surface(path("w.h5"), {}, wr::Levels::keep),
                           wx = wr::load_surface(path("w.x3p"), {}, wr::Levels::keep);
   for (std::size_t i = 0; i < wh.map.h.size(); ++i) ASSERT_EQ(wh.map.h[i], wx.map.h[i]) << i;
+  const CliRun wet = run("friction " + path("s.h5") + " --wet " + path("w.x3p") + " -q");
+  EXPECT_EQ(wet.code, 2);
+  EXPECT_NE(wet.err.find("wet surface only"), std::string::npos) << wet.err;
+  const CliRun said = run("fill " + path("s.X3P") + " --limit -o " + path("l.x3p"));
+  EXPECT_NE(said.out.find("x3p: 64 x 64 map"), std::string::npos) << said.out;
   const CliRun bad = run("synth --size 64 -q --format tiff -o " + path("t.tif"));
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("--format"), std::string::npos) << bad.err;
