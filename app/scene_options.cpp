@@ -121,7 +121,8 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
   s.add_option("--solver", c.solver,
                "fem: linear solver of the active-set systems: direct (sparse Cholesky: SuiteSparse CHOLMOD on one "
                "rank, MUMPS on several), amg (CG with the AMG preconditioner of --amg), or auto (direct up to "
-               "20000 nodes on one rank, where it is measured faster; docs/performance.md)")
+               "20000 nodes on one rank when only pressing, where it is measured faster; AMG for shear tests: "
+               "docs/performance.md)")
       ->capture_default_str();
   s.add_option("--thickness", c.thickness,
                "spectral: layer thickness in m, or inf for a half-space (default: the block height)");

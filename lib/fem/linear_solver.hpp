@@ -15,7 +15,9 @@ enum class LinearSolver { automatic, direct, amg };
 // Newton's systems (--iteration newton) always take the AMG path: they can be indefinite, which
 // CG detects and a Cholesky factorisation does not tolerate.
 // automatic: direct up to this many independent nodes on one rank, AMG above and on several
-// ranks (MUMPS, the parallel factorisation, is not measured to win there).
+// ranks (MUMPS, the parallel factorisation, is not measured to win there). The press-and-shear
+// driver (block_press_shear.hpp) takes AMG for a shear test before this rule: the direct solver
+// was 1.5-1.9x slower in shear at every size measured, 10-28 % faster pressing 1-11k nodes.
 // scripts/bench-fem-solver.sh (docs/performance.md "Direct or AMG", 2026-12-06).
 inline constexpr double kDirectSolverMaxNodes = 20000;
 
