@@ -48,7 +48,10 @@ int run_analyze(const AnalyzeCli& c) {
   const LoadedSurface surface = load_surface(c.input, text);
   io.stop();
   print_load_warnings(surface);  // also under -q: they are about the data
-  if (!c.quiet) std::printf("read %s\n  %s\n\n", c.input.c_str(), describe_import(surface).c_str());
+  if (!c.quiet) {
+    print_import(surface);
+    std::printf("\n");
+  }
 
   AnalysisOptions opt;
   opt.threads = c.threads;

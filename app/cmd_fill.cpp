@@ -120,7 +120,7 @@ int run_fill(const FillCli& c) {
   timer.stop();
 
   if (!c.quiet) {
-    std::printf("read %s\n  %s\n", c.input.c_str(), describe_import(s).c_str());
+    print_import(s);
     std::printf("%s -> %s\n  %s\n", c.input.c_str(), c.output.c_str(), r.method.c_str());
     if (std::isfinite(w.rain_depth)) std::printf("  rain depth        %.6g m\n", w.rain_depth);
     std::printf("  coverage          %.4f %%\n", 100 * w.coverage);

@@ -139,7 +139,7 @@ int run_friction_command(const FrictionCli& c) {
 
   const LoadedSurface dry = load_surface(c.input);
   print_load_warnings(dry);
-  if (!c.quiet) std::printf("read %s\n  %s\n", c.input.c_str(), describe_import(dry).c_str());
+  if (!c.quiet) print_import(dry);
   std::optional<LoadedSurface> wet_map;
   std::optional<WetSurface> wet;
   if (!c.wet.empty()) {

@@ -116,4 +116,6 @@ void print_load_warnings(const LoadedSurface& s) {
   for (const auto& w : s.warnings) std::fprintf(stderr, "wetroad: warning: %s: %s\n", s.source.c_str(), w.c_str());
 }
 
+void print_import(const LoadedSurface& s) { std::printf("read %s\n  %s\n", s.source.c_str(), describe_import(s).c_str()); }
+
 }  // namespace wr::app

@@ -117,17 +117,16 @@ GriddedCloud grid_point_cloud(const std::vector<CloudPoint>& points, const Point
       double& h = out.map(ii, j);
       h = std::numeric_limits<double>::quiet_NaN();
       if (lt == Delaunay::OUTSIDE_CONVEX_HULL || lt == Delaunay::OUTSIDE_AFFINE_HULL) continue;
-      if (dt.is_infinite(f)) f = f->neighbor(li);  // on a hull edge or vertex: its finite face
-      if (dt.is_infinite(f)) {                    // a hull vertex whose chosen neighbour is infinite too
-        if (lt != Delaunay::VERTEX) continue;
+      if (lt == Delaunay::VERTEX) {  // the node is a data point: its own height
         h = f->vertex(li)->info();
         continue;
       }
+      if (dt.is_infinite(f)) f = f->neighbor(li);  // on a hull edge: the finite face across it
       hint = f;
       const double e2 = squared_longest_edge(f);
       if (e2 > gap2) continue;
       used2 = std::max(used2, e2);
-      h = lt == Delaunay::VERTEX ? f->vertex(li)->info() : interpolate_on(f, p);
+      h = interpolate_on(f, p);
     }
   out.max_edge_used = std::sqrt(used2);
   out.dropouts = std::size_t(std::count_if(out.map.h.begin(), out.map.h.end(), [](double v) { return std::isnan(v); }));

@@ -22,6 +22,7 @@
 #include "lib/core/errors.hpp"
 #include "lib/core/memory_guard.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "roads/text_records.hpp"
 #include "wetroad/version.hpp"
 
 namespace wr {
@@ -29,6 +30,15 @@ namespace {
 
 constexpr const char* kMainXml = "main.xml";
 constexpr const char* kVendorFile = "wetroad.json";
+
+// libzip's words for an error code of zip_open.
+std::string zip_error_text(int code) {
+  zip_error_t ze;
+  zip_error_init_with_code(&ze, code);
+  std::string why = zip_error_strerror(&ze);
+  zip_error_fini(&ze);
+  return why;
+}
 
 // ---- reading ----
 
@@ -38,13 +48,7 @@ class ZipReader {
     int err = 0;
     // ZIP_CHECKCONS: a damaged central directory is an error here, not garbage later.
     za_ = zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &err);
-    if (!za_) {
-      zip_error_t ze;
-      zip_error_init_with_code(&ze, err);
-      const std::string why = zip_error_strerror(&ze);
-      zip_error_fini(&ze);
-      throw InputError(path, "not a readable X3P archive (zip: " + why + ")");
-    }
+    if (!za_) throw InputError(path, "not a readable X3P archive (zip: " + zip_error_text(err) + ")");
   }
   ~ZipReader() { zip_discard(za_); }
   ZipReader(const ZipReader&) = delete;
@@ -63,14 +67,11 @@ class ZipReader {
 
   // The whole entry; a CRC mismatch (a damaged archive) surfaces as a read error.
   std::string read(const std::string& name) const {
-    zip_stat_t st;
-    zip_stat_init(&st);
-    if (zip_stat(za_, name.c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
-      throw InputError(path_, "the X3P archive has no " + name);
-    require_memory(std::size_t(st.size), 1, 2.0, path_, "reading " + name);
+    const std::size_t stated = size(name);
+    require_memory(stated, 1, 2.0, path_, "reading " + name);
     std::unique_ptr<zip_file_t, decltype(&zip_fclose)> f(zip_fopen(za_, name.c_str(), 0), &zip_fclose);
     if (!f) throw InputError(path_, "cannot open " + name + " in the X3P archive (" + zip_strerror(za_) + ")");
-    std::string bytes(std::size_t(st.size), '\0');
+    std::string bytes(stated, '\0');
     std::size_t got = 0;
     while (got < bytes.size()) {
       const zip_int64_t n = zip_fread(f.get(), bytes.data() + got, bytes.size() - got);
@@ -116,10 +117,9 @@ struct XmlContext {
       fail(std::string("no ") + parent.name() + "/" + name);
     }
     const std::string t = trimmed(n.child_value());
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    if (t.empty() || *end != '\0' || !std::isfinite(v)) fail(std::string(parent.name()) + "/" + name + " is not a number: '" + t + "'");
-    return v;
+    const std::optional<double> v = parse_number(t);
+    if (!v || !std::isfinite(*v)) fail(std::string(parent.name()) + "/" + name + " is not a number: '" + t + "'");
+    return *v;
   }
   std::size_t count(pugi::xml_node parent, const char* name) const {
     const double v = number(parent, name);
@@ -216,10 +216,9 @@ void read_points(const XmlContext& x, const ZipReader& zip, pugi::xml_node rec3,
       m.h[i] = std::numeric_limits<double>::quiet_NaN();
       continue;
     }
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    if (*end != '\0') x.fail("Datum " + std::to_string(i + 1) + " is not one number: '" + t + "'");
-    m.h[i] = cz.offset + cz.increment * v;
+    const std::optional<double> v = parse_number(t);
+    if (!v) x.fail("Datum " + std::to_string(i + 1) + " is not one number: '" + t + "'");
+    m.h[i] = cz.offset + cz.increment * *v;
   }
 }
 
@@ -410,7 +409,7 @@ void write_x3p(const std::string& path, const HeightMap& map, const std::string&
   const std::string tmp = temporary_sibling(path);
   int err = 0;
   zip_t* za = zip_open(tmp.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  if (!za) throw InputError(path, "cannot create the X3P archive (zip error " + std::to_string(err) + ")");
+  if (!za) throw InputError(path, "cannot create the X3P archive (zip: " + zip_error_text(err) + ")");
   try {
     add_entry(za, kMainXml, xml, path);
     add_entry(za, "bindata/data.bin", data, path);

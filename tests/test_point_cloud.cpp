@@ -115,6 +115,22 @@ TEST(PointCloud, HoleBecomesDropouts) {
   // Through the loader the hole's nodes are dropouts (counted, then filled) like any instrument's.
 }
 
+// A node that falls on a data point takes that point's height, on the hull's corners too (where
+// the triangulation's face at the vertex can be an infinite one).
+TEST(PointCloud, NodesOnDataPointsTakeTheirHeights) {
+  PointCloudGridOptions opt;
+  opt.dx = 0.25;
+  const std::vector<CloudPoint> pts = {{0, 0, 1}, {1, 0, 2}, {0, 1, 3}, {1, 1, 4}, {0.5, 0.5, 10}, {0.3, 0.7, 5}};
+  const GriddedCloud g = wr::grid_point_cloud(pts, opt, "test");
+  ASSERT_EQ(g.map.nx, 5u);
+  EXPECT_EQ(g.map(0, 0), 1);
+  EXPECT_EQ(g.map(4, 0), 2);
+  EXPECT_EQ(g.map(0, 4), 3);
+  EXPECT_EQ(g.map(4, 4), 4);
+  EXPECT_EQ(g.map(2, 2), 10);
+  EXPECT_EQ(g.dropouts, 0u);
+}
+
 TEST(PointCloud, RefusesWhatIsNoSurface) {
   PointCloudGridOptions opt;
   opt.dx = 1e-3;

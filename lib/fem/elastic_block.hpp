@@ -170,8 +170,8 @@ class ElasticBlock {
   // resolves it, and the Signorini iteration of the fine mesh is left the short-waved rest.
   void add_lifted_face_field(const std::vector<double>& field, int fnx, int fny);
   std::size_t nodes() const;  // independent nodes
-  AmgHierarchy amg_hierarchy() const;
-  LinearSolver linear_solver() const;  // the one in use: direct or amg, never automatic  // the one in use: standard or lean, never automatic
+  AmgHierarchy amg_hierarchy() const;  // the one in use: standard or lean, never automatic
+  LinearSolver linear_solver() const;  // the one in use: direct or amg, never automatic
   const GradedMesh& mesh() const;
   std::size_t dofs() const { return 3 * nodes(); }
 

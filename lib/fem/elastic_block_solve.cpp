@@ -11,11 +11,10 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   std::vector<FaceNode> face = m.owned_face_nodes();
   if (m.active.size() != face.size()) m.active.assign(face.size(), 0);
   const Impl::TopBoundary top = m.prescribe_top(load);
-  // Newton's systems can be indefinite (the softening part of the constraints' curvature): CG
-  // detects that and the cut is applied; a Cholesky factorisation would fail (CHOLMOD) or hide
-  // it (MUMPS's LDL^T). So Newton always takes the AMG path.
   // Newton on the C2 obstacle (ContactLoad::smooth): full steps, none of the fixed-point
-  // iteration's devices (damping, jumps).
+  // iteration's devices (damping, jumps). Its systems can be indefinite (the softening part of
+  // the constraints' curvature): CG detects that and the cut is applied, where a Cholesky
+  // factorisation would fail (CHOLMOD) or hide it (MUMPS's LDL^T). So Newton takes the AMG.
   const bool newton = load.follow_geometry && load.smooth;
   Impl::LinearSystems s(m.comm, m.u, out.face_nodes, m.amg, newton ? LinearSolver::amg : m.solver);
 
