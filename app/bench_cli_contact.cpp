@@ -387,41 +387,41 @@ int run_spot(const SpotBenchCli& c) {
 BenchEntry add_spectral_speed_bench(CLI::App& bench) {
   auto o = std::make_shared<SpectralSpeedBenchCli>();
   CLI::App* ss = bench.add_subcommand("spectral", "Speed of the spectral normal-contact solver (10 loads per N x N surface).");
-  ss->add_option("--sizes", o->spectral_sizes, "grid sizes N")->capture_default_str();
-  ss->add_option("--loads", o->spectral_loads, "loads per surface")->capture_default_str();
-  ss->add_option("--threads", o->threads, "FFT threads (default: all cores)");
+  ss->add_option("--sizes", o->spectral_sizes, "grid sizes N")->check(CLI::Range(2, 65536))->capture_default_str();
+  ss->add_option("--loads", o->spectral_loads, "loads per surface")->check(CLI::Range(1, 1000000))->capture_default_str();
+  ss->add_option("--threads", o->threads, "FFT threads (default: all cores)")->check(CLI::NonNegativeNumber);
   ss->add_option("--tol", o->spectral_tol, "relative l1 pressure change that ends a solve (>= 1e-9: single-precision CG)")->capture_default_str();
   ss->add_option("--admit-every", o->admit_every, "iterations between admissions of penetrating points")
       ->capture_default_str();
-  ss->add_option("--json", o->json, "write the results as JSON");
+  ss->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {ss, [o] { return run_spectral_speed(*o); }, &o->json, nullptr, nullptr};
 }
 
 BenchEntry add_spectral_shear_bench(CLI::App& bench) {
   auto o = std::make_shared<SpectralShearBenchCli>();
   CLI::App* sh = bench.add_subcommand("spectral-shear", "Speed of the spectral shear test (Problem A then B) on an N x N surface.");
-  sh->add_option("--size", o->shear_n, "grid size N")->capture_default_str();
+  sh->add_option("--size", o->shear_n, "grid size N")->check(CLI::Range(2, 65536))->capture_default_str();
   sh->add_option("--uz", o->shear_uz, "final approach of the far face, m (surface: h0 1e-5 m over 1 cm)")
       ->capture_default_str();
   sh->add_option("--ux", o->shear_ux, "final tangential displacement of the far face, m")->capture_default_str();
-  sh->add_option("--steps", o->shear_steps, "steps of each phase")->capture_default_str();
-  sh->add_option("--threads", o->threads, "FFT threads (default: all cores)");
+  sh->add_option("--steps", o->shear_steps, "steps of each phase")->check(CLI::Range(1, 1000000))->capture_default_str();
+  sh->add_option("--threads", o->threads, "FFT threads (default: all cores)")->check(CLI::NonNegativeNumber);
   sh->add_option("--tol", o->spectral_tol, "relative l1 pressure change that ends a solve (>= 1e-9: single-precision CG)")
       ->capture_default_str();
-  sh->add_option("--json", o->json, "write the results as JSON");
+  sh->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {sh, [o] { return run_spectral_shear(*o); }, &o->json, nullptr, nullptr};
 }
 
 BenchEntry add_kappa_bench(CLI::App& bench) {
   auto o = std::make_shared<KappaBenchCli>();
   CLI::App* ka = bench.add_subcommand("kappa", "Low-pressure kappa and the grid convergence of A/A0, spectral half-space.");
-  ka->add_option("--sizes", o->kappa_sizes, "grid sizes N sampling the same surface")->capture_default_str();
-  ka->add_option("--band", o->kappa_band, "q1 = the Nyquist wavenumber of a band x band grid")->capture_default_str();
-  ka->add_option("--seeds", o->kappa_seeds, "surfaces averaged")->capture_default_str();
+  ka->add_option("--sizes", o->kappa_sizes, "grid sizes N sampling the same surface")->check(CLI::Range(2, 65536))->capture_default_str();
+  ka->add_option("--band", o->kappa_band, "q1 = the Nyquist wavenumber of a band x band grid")->check(CLI::Range(1, 1000000))->capture_default_str();
+  ka->add_option("--seeds", o->kappa_seeds, "surfaces averaged")->check(CLI::Range(1, 1000000))->capture_default_str();
   ka->add_flag("--period", o->period_effect, "the period effect instead: spacing kept, period growing with N");
-  ka->add_option("--threads", o->threads, "FFT threads (default: all cores)");
-  ka->add_option("--json", o->json, "write the results as JSON");
-  ka->add_option("--plot", o->plot, "draw A/A0 against sigma* per grid with Persson's and BGT's lines (SVG)");
+  ka->add_option("--threads", o->threads, "FFT threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  ka->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
+  ka->add_option("--plot", o->plot, "draw A/A0 against sigma* per grid with Persson's and BGT's lines (SVG)")->type_name("OUTPUT");
   return {ka, [o] { return run_kappa(*o); }, &o->json, &o->plot, nullptr};
 }
 
@@ -430,8 +430,8 @@ BenchEntry add_spectral_vs_fem_bench(CLI::App& bench) {
   CLI::App* vs = bench.add_subcommand("spectral-vs-fem", "A/A0 and mu of the spectral layer against the FEM block over slopes (MPI ok).");
   vs->add_option("--h0", o->compare_h0, "rms heights of the scenes, m")->capture_default_str();
   vs->add_option("--refine", o->compare_refine, "face refinement of both models")->capture_default_str();
-  vs->add_option("--json", o->json, "write the results as JSON");
-  vs->add_option("--plot", o->plot, "draw the difference against rms slope (SVG)");
+  vs->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
+  vs->add_option("--plot", o->plot, "draw the difference against rms slope (SVG)")->type_name("OUTPUT");
   return {vs, [o] { return run_spectral_vs_fem(*o); }, &o->json, &o->plot, nullptr};
 }
 
@@ -439,10 +439,10 @@ BenchEntry add_accuracy_bench(CLI::App& bench) {
   auto o = std::make_shared<AccuracyBenchCli>();
   CLI::App* ac = bench.add_subcommand("accuracy", "Speed against accuracy of every model on one scene (MPI ok; minutes).");
   ac->add_option("--h0", o->accuracy_h0, "rms height of the scene, m")->capture_default_str();
-  ac->add_option("--fem-refines", o->fem_refines, "FEM face refinements (the last is the reference)")->capture_default_str();
-  ac->add_option("--spectral-refines", o->spectral_refines, "spectral grid refinements")->capture_default_str();
-  ac->add_option("--json", o->json, "write the results as JSON");
-  ac->add_option("--plot", o->plot, "draw wall time against error (SVG)");
+  ac->add_option("--fem-refines", o->fem_refines, "FEM face refinements (the last is the reference)")->check(CLI::Range(1, 1000000))->capture_default_str();
+  ac->add_option("--spectral-refines", o->spectral_refines, "spectral grid refinements")->check(CLI::Range(1, 1000000))->capture_default_str();
+  ac->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
+  ac->add_option("--plot", o->plot, "draw wall time against error (SVG)")->type_name("OUTPUT");
   return {ac, [o] { return run_accuracy(*o); }, &o->json, &o->plot, nullptr};
 }
 
@@ -457,27 +457,27 @@ BenchEntry add_mesh_convergence_bench(CLI::App& bench) {
       "one would not fit) is skipped. Over each three successive finished meshes with one refinement ratio:\n"
       "the observed order, the extrapolated value and its GCI error band.\n"
       "Example: mpirun -np 2 wetroad bench mesh-convergence --surface d32.h5 --refines 1 2 4 8 --json mc.json");
-  mc->add_option("--surface", o->mc_surface, "surface file (periodic HDF5 height map)")->required();
+  mc->add_option("--surface", o->mc_surface, "surface file (periodic HDF5 height map)")->type_name("FILE")->required();
   mc->add_option("--uz", o->mc_uz, "normal displacement of the top, m")->capture_default_str();
   mc->add_option("--ux", o->mc_ux, "tangential displacement of the top, m")->capture_default_str();
-  mc->add_option("--steps", o->mc_steps, "normal steps")->capture_default_str();
+  mc->add_option("--steps", o->mc_steps, "normal steps")->check(CLI::Range(1, 1000000))->capture_default_str();
   mc->add_option("--shear-steps", o->mc_shear_steps, "shear steps")->capture_default_str();
   mc->add_option("--tol", o->mc_tol, "Signorini tolerance (relative change)")->capture_default_str();
   mc->add_option("--nu", o->mc_nu, "Poisson's ratio")->capture_default_str();
-  mc->add_option("--refines", o->mc_refines, "face refinements, ascending")->capture_default_str();
-  mc->add_option("--json", o->json, "write the results as JSON");
-  mc->add_option("--plot", o->plot, "draw peak mu against face spacing with the limit (SVG)");
+  mc->add_option("--refines", o->mc_refines, "face refinements, ascending")->check(CLI::Range(1, 1000000))->capture_default_str();
+  mc->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
+  mc->add_option("--plot", o->plot, "draw peak mu against face spacing with the limit (SVG)")->type_name("OUTPUT");
   return {mc, [o] { return run_mesh_convergence(*o); }, &o->json, &o->plot, &o->mc_surface};
 }
 
 BenchEntry add_hertz_bench(CLI::App& bench) {
   auto o = std::make_shared<HertzBenchCli>();
   CLI::App* he = bench.add_subcommand("hertz", "Hertz validation of the FEM contact solver over three meshes (MPI ok).");
-  he->add_option("--meshes", o->hertz_meshes, "elements per face side")->capture_default_str();
+  he->add_option("--meshes", o->hertz_meshes, "elements per face side")->check(CLI::Range(1, 1000000))->capture_default_str();
   he->add_option("--radius", o->hertz_radius, "paraboloid radius of curvature, m")->capture_default_str();
   he->add_option("--uz", o->hertz_uz, "top displacement, m")->capture_default_str();
   he->add_option("--layers", o->hertz_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
-  he->add_option("--json", o->json, "write the results as JSON");
+  he->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {he, [o] { return run_hertz(*o); }, &o->json, nullptr, nullptr};
 }
 
@@ -489,10 +489,10 @@ BenchEntry add_spot_bench(CLI::App& bench) {
       "vertices is touched by both models on the same face lattice; the ratio of their local compliances is 1 for\n"
       "a resolved spot and shows what a node of the bricks' face yields against a pixel of uniform pressure.\n"
       "Example: wetroad bench spot --sizes 1 2 4 --refines 1 2 4  (the defaults take about 2 min)");
-  st->add_option("--sizes", o->spot_sizes, "spot sizes, raised obstacle vertices per side")->capture_default_str();
-  st->add_option("--refines", o->spot_refines, "face refinements")->capture_default_str();
+  st->add_option("--sizes", o->spot_sizes, "spot sizes, raised obstacle vertices per side")->check(CLI::Range(1, 1000000))->capture_default_str();
+  st->add_option("--refines", o->spot_refines, "face refinements")->check(CLI::Range(1, 1000000))->capture_default_str();
   st->add_option("--layers", o->spot_layers, "brick layers per in-plane spacing (bulk grading)")->capture_default_str();
-  st->add_option("--json", o->json, "write the results as JSON");
+  st->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {st, [o] { return run_spot(*o); }, &o->json, nullptr, nullptr};
 }
 

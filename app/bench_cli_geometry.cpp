@@ -41,11 +41,11 @@ BenchEntry add_obstacle_rays_bench(CLI::App& bench) {
       "periodic_obstacle.hpp). This casts the same rays with the lattice walk in use and with CGAL's AABB tree\n"
       "over the same triangles (plus the periodic ring a ray can reach), and compares times and hits.\n"
       "Example: wetroad bench obstacle-rays --size 300 --rays 200000");
-  s->add_option("--size", o->n, "lattice points per side")->capture_default_str();
-  s->add_option("--rays", o->rays, "rays cast by each method")->capture_default_str();
+  s->add_option("--size", o->n, "lattice points per side")->check(CLI::Range(2, 65536))->capture_default_str();
+  s->add_option("--rays", o->rays, "rays cast by each method")->check(CLI::Range(1, 1000000))->capture_default_str();
   s->add_option("--tilt", o->tilt, "largest angle of a ray from the vertical, degrees")->capture_default_str();
   s->add_option("--seed", o->seed, "surface and ray seed")->capture_default_str();
-  s->add_option("--json", o->json, "write the results as JSON");
+  s->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {s, [o] { return run_obstacle_rays(*o); }, &o->json, nullptr, nullptr};
 }
 

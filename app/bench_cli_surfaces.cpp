@@ -151,48 +151,48 @@ int run_friction(const FrictionBenchCli& c) {
 BenchEntry add_speed_bench(CLI::App& bench) {
   auto o = std::make_shared<SpeedBenchCli>();
   CLI::App* sp = bench.add_subcommand("speed", "Wall time and peak memory of synth + analyze on N x N surfaces.");
-  sp->add_option("--sizes", o->sizes, "grid sizes N")->capture_default_str();
-  sp->add_option("--repeat", o->repeats, "repetitions; the best time is reported")->capture_default_str();
-  sp->add_option("--threads", o->threads, "worker threads (default: all hardware threads); results do not depend on it");
+  sp->add_option("--sizes", o->sizes, "grid sizes N")->check(CLI::Range(2, 65536))->capture_default_str();
+  sp->add_option("--repeat", o->repeats, "repetitions; the best time is reported")->check(CLI::Range(1, 1000000))->capture_default_str();
+  sp->add_option("--threads", o->threads, "worker threads (default: all hardware threads); results do not depend on it")->check(CLI::NonNegativeNumber);
   sp->add_flag("--files", o->files, "go through an HDF5 file between synth and analyze (as the CLI does)");
-  sp->add_option("--json", o->json, "write the results as JSON");
+  sp->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {sp, [o] { return run_speed(*o); }, &o->json, nullptr, nullptr};
 }
 
 BenchEntry add_summits_bench(CLI::App& bench) {
   auto o = std::make_shared<SummitsBenchCli>();
   CLI::App* su = bench.add_subcommand("summits", "Summit-height statistics of surface ensembles against eq. 4.5 (Fig. 4.4).");
-  su->add_option("--realizations", o->realizations, "surfaces per alpha")->capture_default_str();
+  su->add_option("--realizations", o->realizations, "surfaces per alpha")->check(CLI::Range(1, 1000000))->capture_default_str();
   su->add_option("--fractions", o->fractions, "low-pass fractions q1/q1^ (dataset C)")->capture_default_str();
-  su->add_option("--threads", o->threads, "worker threads (default: all hardware threads); results do not depend on it");
-  su->add_option("--json", o->json, "write the results as JSON");
+  su->add_option("--threads", o->threads, "worker threads (default: all hardware threads); results do not depend on it")->check(CLI::NonNegativeNumber);
+  su->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {su, [o] { return run_summits(*o); }, &o->json, nullptr, nullptr};
 }
 
 BenchEntry add_water_bench(CLI::App& bench) {
   auto o = std::make_shared<WaterBenchCli>();
   CLI::App* wa = bench.add_subcommand("water", "Speed and memory of the water module (drained limit, hierarchy, rain depths).");
-  wa->add_option("--size", o->water_n, "grid size N")->capture_default_str();
-  wa->add_option("--json", o->json, "write the results as JSON");
+  wa->add_option("--size", o->water_n, "grid size N")->check(CLI::Range(2, 65536))->capture_default_str();
+  wa->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {wa, [o] { return run_water(*o); }, &o->json, nullptr, nullptr};
 }
 
 BenchEntry add_coverage_bench(CLI::App& bench) {
   auto o = std::make_shared<CoverageBenchCli>();
   CLI::App* co = bench.add_subcommand("coverage", "Drained-limit coverage of the default surface over seeds (4 and 8 connectivity).");
-  co->add_option("--seeds", o->seeds, "realizations")->capture_default_str();
-  co->add_option("--json", o->json, "write the results as JSON");
+  co->add_option("--seeds", o->seeds, "realizations")->check(CLI::Range(1, 1000000))->capture_default_str();
+  co->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {co, [o] { return run_coverage(*o); }, &o->json, nullptr, nullptr};
 }
 
 BenchEntry add_friction_bench(CLI::App& bench) {
   auto o = std::make_shared<FrictionBenchCli>();
   CLI::App* fr = bench.add_subcommand("friction", "Speed and accuracy of the hysteresis model: mu at S speeds from an N x N PSD.");
-  fr->add_option("--size", o->friction_n, "grid size N")->capture_default_str();
-  fr->add_option("--speeds", o->friction_speeds, "number of speeds")->capture_default_str();
-  fr->add_option("--repeat", o->repeats, "repetitions; the best time is reported")->capture_default_str();
-  fr->add_option("--threads", o->threads, "worker threads (default: all hardware threads)");
-  fr->add_option("--json", o->json, "write the results as JSON");
+  fr->add_option("--size", o->friction_n, "grid size N")->check(CLI::Range(2, 65536))->capture_default_str();
+  fr->add_option("--speeds", o->friction_speeds, "number of speeds")->check(CLI::Range(1, 1000000))->capture_default_str();
+  fr->add_option("--repeat", o->repeats, "repetitions; the best time is reported")->check(CLI::Range(1, 1000000))->capture_default_str();
+  fr->add_option("--threads", o->threads, "worker threads (default: all hardware threads)")->check(CLI::NonNegativeNumber);
+  fr->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
   return {fr, [o] { return run_friction(*o); }, &o->json, nullptr, nullptr};
 }
 

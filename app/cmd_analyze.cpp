@@ -23,6 +23,7 @@ struct AnalyzeCli {
   int threads = 0;
   MpdOptions mpd;
   CLI::Option *dx_opt = nullptr, *dy_opt = nullptr, *max_gap_opt = nullptr;
+  std::vector<CLI::Option*> text_only;  // --dx --dy --unit --points --max-gap --periodic
 };
 
 int run_analyze(const AnalyzeCli& c) {
@@ -45,6 +46,8 @@ int run_analyze(const AnalyzeCli& c) {
     if (!c.points) throw InputError("--max-gap", "applies to point clouds only (add --points)");
     text.max_gap = c.max_gap;
   }
+  for (const CLI::Option* o : c.text_only)
+    if (o->count() > 0) text.given.push_back(o->get_name());
   const LoadedSurface surface = load_surface(c.input, text);
   io.stop();
   print_load_warnings(surface);  // also under -q: they are about the data
@@ -117,9 +120,9 @@ Command add_analyze(CLI::App& root) {
       "triangles longer than --max-gap left as dropouts. NaN or invalid points = dropouts.\n"
       "Example: wetroad analyze road.h5 --json road.json --out road-analysis.h5\n"
       "         wetroad analyze scan.xyz --points --unit mm --dx 2e-4");
-  s->add_option("file", c->input, "surface file (HDF5, X3P, text grid or, with --points, a point cloud)")->required();
-  s->add_option("--json", c->json, "write the summary as JSON (SI units; keys in docs/file-formats.md)");
-  s->add_option("--out", c->out, "write the summary, the radial PSD (/psd/q, /psd/C) and summit heights to HDF5");
+  s->add_option("file", c->input, "surface file (HDF5, X3P, text grid or, with --points, a point cloud)")->type_name("FILE")->required();
+  s->add_option("--json", c->json, "write the summary as JSON (SI units; keys in docs/file-formats.md)")->type_name("OUTPUT");
+  s->add_option("--out", c->out, "write the summary, the radial PSD (/psd/q, /psd/C) and summit heights to HDF5")->type_name("OUTPUT");
   c->dx_opt = s->add_option("--dx", c->dx, "text grids: sample spacing along x in m; point clouds: the grid's (required for text)");
   c->dy_opt = s->add_option("--dy", c->dy, "text grids: spacing along y in m (default: --dx)");
   s->add_option("--unit", c->unit, "text grids: unit of the heights; point clouds: of x, y and z: m, mm, um, nm (default m)");
@@ -128,6 +131,8 @@ Command add_analyze(CLI::App& root) {
                                  "point clouds: triangles with a longer edge (m) are not interpolated but left as dropouts "
                                  "(default: 5 x the mean point spacing)");
   s->add_flag("--periodic", c->periodic, "text grids: the data wraps around (default: not periodic)");
+  c->text_only = {c->dx_opt, c->dy_opt, s->get_option("--unit"), s->get_option("--points"), c->max_gap_opt,
+                  s->get_option("--periodic")};
   s->add_option("--baseline", c->mpd.baseline, "MPD segment length in m (ISO 13473-1: 0.1)")->capture_default_str();
   s->add_option("--lowpass", c->mpd.lowpass_wavelength,
                 "MPD low-pass cut-off wavelength in m, 0 = off (ISO 13473-1:2019 Annex D: 2.4e-3)")
@@ -148,7 +153,7 @@ Command add_analyze(CLI::App& root) {
               "MPD on the raw sampling instead of the standard's 0.5 mm (1.0 mm) bin averages (not ISO)");
   s->add_flag("--no-expected-mpd", c->no_expected_mpd,
               "skip the MPD expected on 100 mm profiles from the prescribed PSD (synthesized files)");
-  s->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it");
+  s->add_option("--threads", c->threads, "worker threads (default: all hardware threads); results do not depend on it")->check(CLI::NonNegativeNumber);
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_analyze(*c); }};
 }

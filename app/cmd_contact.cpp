@@ -31,6 +31,7 @@
 #include "lib/io/output_set.hpp"
 #include "roads/height_stats.hpp"
 #include "roads/surface_import.hpp"
+#include "water/water_file.hpp"
 
 namespace wr::app {
 namespace {
@@ -110,6 +111,9 @@ int run_analytic(const ContactCli& c, const LoadedSurface& s, const ContactReque
   const ContactScene& sc = c.sc.scene;
   if (!(sc.pressure > 0)) throw InputError("--pressure", "the analytic model needs a mean pressure, Pa");
   if (!c.out.empty()) throw InputError("--out", "the analytic model has no contact maps");
+  if (!(req.rms_slope > 0 && std::isfinite(req.rms_slope)))
+    throw InputError(s.source, "is flat (rms slope 0): the analytic model's sigma* = sigma0 / (E* rms slope) has no value; "
+                               "a flat surface is in full contact at any load");
   warn_if_invalid(validity.model, validity.checks);
   const auto t0 = std::chrono::steady_clock::now();
   const double a0 = s.map.lx() * s.map.ly();
@@ -246,6 +250,7 @@ int run_contact(ContactCli c) {
   c.json_stage = outputs.add("--json", c.json);
   c.out_stage = outputs.add("--out", c.out);
   const std::string vtu_stage = outputs.add("--vtu", c.vtu);
+  if (!c.wet.empty()) check_wet_file(c.wet, c.surface);
   const LoadedSurface s = load_surface(c.wet.empty() ? c.surface : c.wet);
   require_periodic_map(s, "the contact scene repeats the surface");
   if (launch_rank_and_size().first == 0) print_load_warnings(s);  // also under -q
@@ -424,8 +429,8 @@ Command add_contact(CLI::App& root) {
   sc.normal_steps = 4;
   sc.shear_steps = 0;  // as --steps
   sc.threads = 0;      // spectral FFT threads: all cores
-  s->add_option("--surface", c->surface, "surface file (periodic HDF5 height map)")->required();
-  s->add_option("--wet", c->wet, "wet surface from `wetroad fill` (used as the obstacle instead)");
+  s->add_option("--surface", c->surface, "surface file (periodic HDF5 height map)")->type_name("FILE")->required();
+  s->add_option("--wet", c->wet, "wet surface from `wetroad fill` (used as the obstacle instead)")->type_name("FILE");
   s->add_option("--problem", c->problem, "normal (Problem A) or shear (Problem B)")->capture_default_str();
   s->add_option("--model", c->model,
                 "contact model: analytic (Persson/BGT, needs --pressure), spectral (periodic layer / half-space), fem "
@@ -433,10 +438,10 @@ Command add_contact(CLI::App& root) {
       ->capture_default_str();
   add_scene_options(*s, c->sc);
   s->add_option("--pressure", sc.pressure, "analytic and spectral models: final mean pressure, Pa (load control; instead of --uz)");
-  s->add_option("--threads", sc.threads, "spectral model: FFT threads (default: all cores)");
-  s->add_option("--json", c->json, "write the per-step results as JSON (SI units)");
-  s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5");
-  s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)");
+  s->add_option("--threads", sc.threads, "spectral model: FFT threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  s->add_option("--json", c->json, "write the per-step results as JSON (SI units)")->type_name("OUTPUT");
+  s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5")->type_name("OUTPUT");
+  s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)")->type_name("OUTPUT");
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   s->add_flag("--trace", c->trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time); with --iteration newton also, after each converged step, whether the whole curvature term leaves the system definite there (docs/fem-solver.md, the second-order check)");

@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "app/print_summary.hpp"
+#include "lib/core/content_hash.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/io/atomic_output.hpp"
@@ -23,7 +24,7 @@ struct FillCli {
   double rain = 0, coverage = 0, dmax = 0;
   bool limit = false, stagnant = false, quiet = false;
   int connectivity = 4;
-  CLI::Option *rain_opt = nullptr, *coverage_opt = nullptr;
+  CLI::Option *rain_opt = nullptr, *coverage_opt = nullptr, *dmax_opt = nullptr;
 };
 
 FillRequest make_request(const FillCli& c) {
@@ -44,7 +45,10 @@ FillRequest make_request(const FillCli& c) {
     r.rule = FillRule::cap;
   else
     throw InputError("--rule", "must be fsm or cap");
-  if (r.rule == FillRule::cap && c.dmax <= 0) throw InputError("--dmax", "--rule cap needs --dmax D > 0 (m)");
+  if (r.rule == FillRule::cap && !(c.dmax > 0 && std::isfinite(c.dmax)))
+    throw InputError("--dmax", "--rule cap needs --dmax D > 0 (m)");
+  if (r.rule != FillRule::cap && c.dmax_opt->count() > 0)
+    throw InputError("--dmax", "applies to --rule cap only; fill-spill-merge has no depth cap");
   r.dmax = c.dmax;
   r.connectivity = c.connectivity;
   return r;
@@ -82,7 +86,8 @@ int run_fill(const FillCli& c) {
                       {"method", r.method},
                       {"dropouts_filled", s.dropouts},
                       {"hierarchy_nodes", r.hierarchy_nodes},
-                      {"warnings", r.warnings}};
+                      {"warnings", r.warnings},
+                      {"dry_surface_sha256", sha256_file_hex(c.input)}};
   if (req.coverage) {
     j["target_coverage"] = *req.coverage;
     j["target_in_jump"] = r.target_in_jump;
@@ -153,8 +158,8 @@ Command add_fill(CLI::App& root) {
       "flooded surface. --tiling 3x3 reproduces the thesis's method and reports where it differs from the\n"
       "exact answer. Output HDF5: /height (wet surface), /water_depth, /ground.\n"
       "Example: wetroad fill road.h5 --coverage 0.3 -o wet.h5 --json wet.json");
-  s->add_option("surface", c->input, "periodic surface file (HDF5 /height or X3P, e.g. from synth)")->required();
-  s->add_option("-o,--output", c->output, "output file (written atomically): HDF5, or X3P of the wet surface")->required();
+  s->add_option("surface", c->input, "periodic surface file (HDF5 /height or X3P, e.g. from synth)")->type_name("FILE")->required();
+  s->add_option("-o,--output", c->output, "output file (written atomically): HDF5, or X3P of the wet surface")->type_name("OUTPUT")->required();
   s->add_option("--format", c->format,
                 "hdf5 (/height, /water_depth, /ground) or x3p (the wet surface only); auto: x3p for a .x3p name")
       ->capture_default_str();
@@ -166,10 +171,10 @@ Command add_fill(CLI::App& root) {
   s->add_option("--tiling", c->tiling, "torus (exact periodic) or 3x3 (the thesis's approximation)")->capture_default_str();
   s->add_option("--rule", c->rule, "fsm (fill-spill-merge) or cap (thesis's literal rule, non-physical)")
       ->capture_default_str();
-  s->add_option("--dmax", c->dmax, "rule cap: level = min(spill level, h + dmax), m");
+  c->dmax_opt = s->add_option("--dmax", c->dmax, "rule cap: level = min(spill level, h + dmax), m");
   s->add_option("--connectivity", c->connectivity, "4 (water crosses cell edges) or 8 (also corners)")
       ->capture_default_str();
-  s->add_option("--json", c->json, "also write the summary as JSON");
+  s->add_option("--json", c->json, "also write the summary as JSON")->type_name("OUTPUT");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_fill(*c); }};
 }

@@ -15,6 +15,7 @@
 #include "reports/plot.hpp"
 #include "roads/surface_import.hpp"
 #include "roads/x3p_file.hpp"
+#include "water/water_file.hpp"
 #include "wetroad/version.hpp"
 
 namespace wr::app {
@@ -38,23 +39,6 @@ std::vector<double> log_speeds(const std::vector<double>& range) {
   std::vector<double> v;
   for (int i = 0; i < static_cast<int>(n); ++i) v.push_back(a * std::pow(b / a, i / (n - 1)));
   return v;
-}
-
-// The fraction of the wet file's area under water (/water_depth > 0), and its wet surface.
-double coverage_of(const std::string& path) {
-  if (looks_like_zip(path))
-    throw InputError(path, "an X3P file holds the wet surface only; --wet takes the HDF5 output of `wetroad fill`");
-  Hdf5Reader r(path);
-  if (!r.has_dataset("/water_depth"))
-    throw InputError(path, "no /water_depth: --wet takes the output of `wetroad fill`");
-  const std::vector<std::size_t> d = r.dims("/water_depth");
-  std::size_t n = 1;
-  for (std::size_t x : d) n *= x;
-  std::vector<double> depth(n);
-  r.read_doubles("/water_depth", depth.data(), n);
-  std::size_t wet = 0;
-  for (double x : depth) wet += x > 0;
-  return static_cast<double>(wet) / static_cast<double>(n);
 }
 
 PlotSpec curve_plot(const FrictionRun& r, const FrictionScene& s) {
@@ -143,7 +127,7 @@ int run_friction_command(const FrictionCli& c) {
   std::optional<LoadedSurface> wet_map;
   std::optional<WetSurface> wet;
   if (!c.wet.empty()) {
-    const double coverage = coverage_of(c.wet);
+    const double coverage = check_wet_file(c.wet, c.input);
     wet_map = load_surface(c.wet);
     wet = WetSurface{&wet_map->map, coverage};
   }
@@ -208,9 +192,9 @@ Command add_friction(CLI::App& root) {
       "rise, the peak, mu at 64 km/h (SN = 100 mu) and the model's validity checks.\n"
       "Default compound: share/compounds/synthetic-tread.json (SYNTHETIC: see its source field).\n"
       "Example: wetroad friction road.h5 --wet road-wet.h5 --flash-temperature --plot mu.svg");
-  s->add_option("surface", c->input, "the dry surface (HDF5 map or text grid)")->required();
-  s->add_option("--wet", c->wet, "the wet surface: output of `wetroad fill` (/height, /water_depth)");
-  s->add_option("--compound", c->compound, "compound JSON file (default share/compounds/synthetic-tread.json; format: docs/friction-model.md)");
+  s->add_option("surface", c->input, "the dry surface (HDF5 map or text grid)")->type_name("FILE")->required();
+  s->add_option("--wet", c->wet, "the wet surface: output of `wetroad fill` (/height, /water_depth)")->type_name("FILE");
+  s->add_option("--compound", c->compound, "compound JSON file (default share/compounds/synthetic-tread.json; format: docs/friction-model.md)")->type_name("FILE");
   s->add_option("--temperature", c->temperature, "road and rubber temperature in deg C")->capture_default_str();
   s->add_option("--pressure", c->pressure, "nominal contact pressure sigma0 in Pa")->capture_default_str();
   c->speeds_opt = s->add_option("--speeds", c->speeds, "sliding speeds in m/s");
@@ -219,11 +203,11 @@ Command add_friction(CLI::App& root) {
   c->q1_opt = s->add_option("--q1", c->q1, "short-wavelength cut-off in 1/m (default 2 pi / 20 um = 3.14e5, or the map's last resolved wavenumber if larger)");
   s->add_flag("--flash-temperature", c->flash, "heat the rubber at each scale by the power the coarser scales dissipate");
   s->add_option("--points-per-decade", c->points_per_decade, "q quadrature nodes per decade")->capture_default_str();
-  s->add_option("--json", c->json, "write the result as JSON (SI units)");
-  s->add_option("--out", c->out, "write the curves and the spectrum as HDF5");
-  s->add_option("--plot", c->plot, "chart mu(v) dry and wet as SVG");
-  s->add_option("--plot-q1", c->plot_q1, "chart mu at 17.9 m/s against the cut-off q1 as SVG");
-  s->add_option("--threads", c->threads, "worker threads over speeds (default: all)");
+  s->add_option("--json", c->json, "write the result as JSON (SI units)")->type_name("OUTPUT");
+  s->add_option("--out", c->out, "write the curves and the spectrum as HDF5")->type_name("OUTPUT");
+  s->add_option("--plot", c->plot, "chart mu(v) dry and wet as SVG")->type_name("OUTPUT");
+  s->add_option("--plot-q1", c->plot_q1, "chart mu at 17.9 m/s against the cut-off q1 as SVG")->type_name("OUTPUT");
+  s->add_option("--threads", c->threads, "worker threads over speeds (default: all)")->check(CLI::NonNegativeNumber);
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_friction_command(*c); }};
 }

@@ -1,6 +1,8 @@
 // `wetroad report`: the self-contained HTML report (reports/html_report.hpp).
+#include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 #include "app/commands.hpp"
 #include "lib/core/errors.hpp"
@@ -28,6 +30,10 @@ int run_report(const ReportCli& c) {
     throw InputError("--ifi-c", "--ifi-c and --ifi-tx refine the F60 of --ifi-a and --ifi-b; give those too");
   if ((c.ifi_c_opt->count() > 0) != (c.ifi_tx_opt->count() > 0))
     throw InputError("--ifi-c", "--ifi-c and --ifi-tx go together (the ribbed-tyre term C Tx)");
+  for (const auto& [opt, value] : {std::pair{c.ifi_a_opt, c.ifi_a}, {c.ifi_b_opt, c.ifi_b}, {c.ifi_c_opt, c.ifi_c}})
+    if (opt->count() > 0 && !std::isfinite(value)) throw InputError(opt->get_name(), "must be a finite number");
+  if (c.ifi_tx_opt->count() > 0 && !(c.ifi_tx >= 0 && c.ifi_tx <= 100))
+    throw InputError("--ifi-tx", "the texture measure Tx must lie in 0 ... 100 mm");
   OutputSet outputs;
   for (const auto& s : c.sweeps) outputs.input(s);
   for (const auto& f : c.friction) outputs.input(f);
@@ -63,18 +69,18 @@ Command add_report(CLI::App& root) {
       "sites, the MPD of each peak, and the IFI speed constant Sp = 14.2 + 89.7 MPD per site (F60 too when\n"
       "the device constants are given). --friction adds the mu(v) curves of `wetroad friction --out`.\n"
       "Example: wetroad report --sweep sweep.h5 --friction mu.h5 --measured sites.csv -o report.html");
-  s->add_option("--sweep", c->sweeps, "sweep result (sweep-coverage or sweep-roughness --out); repeatable")
+  s->add_option("--sweep", c->sweeps, "sweep result (sweep-coverage or sweep-roughness --out); repeatable")->type_name("FILE")
       ->check(CLI::ExistingFile);
-  s->add_option("--friction", c->friction, "hysteresis friction result (wetroad friction --out): mu(v) dry/wet; repeatable")
+  s->add_option("--friction", c->friction, "hysteresis friction result (wetroad friction --out): mu(v) dry/wet; repeatable")->type_name("FILE")
       ->check(CLI::ExistingFile);
-  s->add_option("--measured", c->measured, "measured skid numbers: CSV site,mpd_mm,sn40r[,speed_kmh]")
+  s->add_option("--measured", c->measured, "measured skid numbers: CSV site,mpd_mm,sn40r[,speed_kmh]")->type_name("FILE")
       ->check(CLI::ExistingFile);
   c->ifi_a_opt = s->add_option("--ifi-a", c->ifi_a, "IFI device constant A (F60 column; needs --ifi-b)");
   c->ifi_b_opt = s->add_option("--ifi-b", c->ifi_b, "IFI device constant B (with --ifi-a)");
   c->ifi_c_opt = s->add_option("--ifi-c", c->ifi_c, "IFI device constant C (ribbed tyre), with --ifi-tx");
   c->ifi_tx_opt = s->add_option("--ifi-tx", c->ifi_tx, "texture measure Tx for the C term, mm");
   s->add_option("--title", c->title, "report title")->capture_default_str();
-  s->add_option("-o,--output", c->output, "the HTML file (written atomically)")->required();
+  s->add_option("-o,--output", c->output, "the HTML file (written atomically)")->type_name("OUTPUT")->required();
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_report(*c); }};
 }

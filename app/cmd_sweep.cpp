@@ -40,24 +40,37 @@ struct SweepCommonCli {
   CLI::Option* q1_opt = nullptr;
   int threads = 0;
   bool resume = false, quiet = false;
+  // Options only the contact models read, and options only the hysteresis model reads: given
+  // with the other kind of model they would be silently ignored, so they are refused by name.
+  std::vector<CLI::Option*> contact_only, hysteresis_only;
 };
+
+// The options of `group` given on the command line, refused by name with `why`.
+void refuse_given(const std::vector<CLI::Option*>& group, const std::string& why) {
+  for (const CLI::Option* o : group)
+    if (o->count() > 0) throw InputError(o->get_name(), why);
+}
 
 void add_common_options(CLI::App& s, SweepCommonCli& c) {
   s.add_option("--model", c.model, "friction model: fem (finite block), spectral (periodic layer), auto (the ladder's "
               "cheapest contact model valid for friction): elastostatic friction; or hysteresis (Persson's mu at --speed)")
       ->capture_default_str();
+  const std::size_t before_scene = s.get_options().size();
   add_scene_options(s, c.sc);
-  s.add_option("--compound", c.compound, "hysteresis: compound JSON (default share/compounds/synthetic-tread.json)");
-  s.add_option("--pressure", c.pressure, "hysteresis: nominal pressure sigma0, Pa")->capture_default_str();
-  s.add_option("--temperature", c.temperature, "hysteresis: temperature, deg C")->capture_default_str();
-  s.add_option("--speed", c.speed, "hysteresis: sliding speed, m/s (default 17.9: the locked wheel at 64 km/h)");
-  c.q1_opt = s.add_option("--friction-q1", c.friction_q1, "hysteresis: spectrum cut-off q1, 1/m (as `friction --q1`)");
-  s.add_flag("--flash-temperature", c.flash, "hysteresis: with the flash temperature (as `friction`)");
-  s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)");
-  s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->required();
-  s.add_option("--csv", c.csv, "also write the table as CSV");
-  s.add_option("--json", c.json, "also write everything as JSON");
-  s.add_option("--plots", c.plots, "directory for the charts (SVG)");
+  const auto scene_options = s.get_options();
+  c.contact_only.assign(scene_options.begin() + std::ptrdiff_t(before_scene), scene_options.end());
+  c.hysteresis_only = {
+      s.add_option("--compound", c.compound, "hysteresis: compound JSON (default share/compounds/synthetic-tread.json)")->type_name("FILE"),
+      s.add_option("--pressure", c.pressure, "hysteresis: nominal pressure sigma0, Pa")->capture_default_str(),
+      s.add_option("--temperature", c.temperature, "hysteresis: temperature, deg C")->capture_default_str(),
+      s.add_option("--speed", c.speed, "hysteresis: sliding speed, m/s (default 17.9: the locked wheel at 64 km/h)"),
+      c.q1_opt = s.add_option("--friction-q1", c.friction_q1, "hysteresis: spectrum cut-off q1, 1/m (as `friction --q1`)"),
+      s.add_flag("--flash-temperature", c.flash, "hysteresis: with the flash temperature (as `friction`)")};
+  s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)")->check(CLI::NonNegativeNumber);
+  s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->type_name("OUTPUT")->required();
+  s.add_option("--csv", c.csv, "also write the table as CSV")->type_name("OUTPUT");
+  s.add_option("--json", c.json, "also write everything as JSON")->type_name("OUTPUT");
+  s.add_option("--plots", c.plots, "directory for the charts (SVG)")->type_name("FOLDER");
   s.add_flag("--resume", c.resume, "continue the sweep checkpointed in OUT.runs/ (same parameters)");
   s.add_flag("-q,--quiet", c.quiet, "print nothing but warnings and errors");
 }
@@ -88,13 +101,17 @@ ContactModel parse_sweep_model(const std::string& name, bool quiet) {
 // The hysteresis model's scene from the common options (model "hysteresis"); nullopt for the
 // contact models, which need --uz and --ux.
 std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
+  if (c.threads < 0) throw InputError("--threads", "must be >= 0 (0: all hardware threads)");
   if (c.model != "hysteresis") {
+    parse_sweep_model(c.model, true);  // a bad name is named before any option it would need
+    refuse_given(c.hysteresis_only, "is an option of --model hysteresis, not of the contact model " + c.model);
     if (!c.sc.uz->count()) throw InputError("--uz", "required by the contact models (fem, spectral, auto)");
     if (!c.sc.ux->count()) throw InputError("--ux", "required by the contact models (fem, spectral, auto)");
     return std::nullopt;
   }
   if (c.sc.uz->count() || c.sc.ux->count())
     throw InputError(c.sc.uz->count() ? "--uz" : "--ux", "the hysteresis model has no block to displace (see --speed)");
+  refuse_given(c.contact_only, "is a contact-model option; --model hysteresis does not use it");
   FrictionScene s;
   s.compound_path = c.compound.empty() ? default_compound_path() : c.compound;
   s.compound = read_compound_json(s.compound_path);
@@ -243,13 +260,17 @@ struct CoverageCli {
   SynthOptions synth;
   std::vector<double> coverages = {0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
   int count = 0;
-  CLI::Option* count_opt = nullptr;
+  CLI::Option *count_opt = nullptr, *coverages_opt = nullptr, *max_coverage_opt = nullptr;
   double max_coverage = 0.8;
   int realizations = 1, connectivity = 4;
 };
 
 CoverageSweepSpec coverage_spec(const CoverageCli& c) {
   CoverageSweepSpec s;
+  if (c.count_opt->count() > 0 && c.coverages_opt->count() > 0)
+    throw InputError("--count", "give either --count (with --max-coverage) or --coverages, not both");
+  if (c.max_coverage_opt->count() > 0 && c.count_opt->count() == 0)
+    throw InputError("--max-coverage", "only sets the range of --count N; give --count, or list --coverages");
   if (c.count_opt->count() > 0) {
     if (c.count < 1 || c.count > 1000) throw InputError("--count", "must be 1 ... 1000 (coverages beyond the dry one)");
     if (!(c.max_coverage > 0 && c.max_coverage < 1)) throw InputError("--max-coverage", "must lie in (0, 1)");
@@ -430,14 +451,14 @@ Command add_sweep_coverage(CLI::App& root) {
       "Example: wetroad sweep-coverage --scene default --size 32 --dx 9.375e-4 --coverages 0 0.2 0.4 0.6 \\\n"
       "           --uz 1.5e-3 --ux 3e-3 --out sweep.h5 --csv sweep.csv --plots charts\n"
       "         mpirun -np 2 wetroad sweep-coverage --surface road.h5 --count 8 --uz 9e-3 --ux 3e-3 --out s.h5");
-  s->add_option("--surface", c->surface, "surface file (HDF5 height map or text grid); or give synthesis options");
+  s->add_option("--surface", c->surface, "surface file (HDF5 height map or text grid); or give synthesis options")->type_name("FILE");
   add_synth_options(*s, c->synth);
   s->add_option("--realizations", c->realizations, "independent synthetic surfaces (seeds seed, seed+1, ...)")
       ->capture_default_str();
-  s->add_option("--coverages", c->coverages, "target water coverages, fractions in [0, 1), ascending (0 = dry)")
+  c->coverages_opt = s->add_option("--coverages", c->coverages, "target water coverages, fractions in [0, 1), ascending (0 = dry)")
       ->capture_default_str();
   c->count_opt = s->add_option("--count", c->count, "instead of --coverages: N+1 coverages evenly from 0 to --max-coverage");
-  s->add_option("--max-coverage", c->max_coverage, "largest coverage of --count")->capture_default_str();
+  c->max_coverage_opt = s->add_option("--max-coverage", c->max_coverage, "largest coverage of --count")->capture_default_str();
   s->add_option("--tiling", c->tiling, "drainage: torus (exact periodic) or 3x3 (the thesis's tiling)")
       ->capture_default_str();
   s->add_option("--connectivity", c->connectivity, "4 or 8 neighbours for water flow")->capture_default_str();

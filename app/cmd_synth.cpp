@@ -99,13 +99,13 @@ Command add_synth(CLI::App& root) {
       "Example: wetroad synth --scene default -o road.h5\n"
       "         wetroad synth --size 300 --dx 1e-4 --h0 7.08e-4 --q1 62832 --oversample 2 -o c.h5\n"
       "         wetroad synth --size 300 --dx 1e-4 --h0 3.05e-4 --sampling thesis -o a.h5   (the thesis's dataset A)");
-  s->add_option("-o,--output", c->output, "output file, HDF5 or X3P (written atomically)")->required();
+  s->add_option("-o,--output", c->output, "output file, HDF5 or X3P (written atomically)")->type_name("OUTPUT")->required();
   s->add_option("--format", c->format,
                 "hdf5, x3p (ISO 25178-72, opens in Gwyddion, MountainsMap, openGPS) or auto: x3p for a .x3p name")
       ->capture_default_str();
   add_synth_options(*s, c->surface);
-  s->add_option("--json", c->json, "also write a JSON summary of what was generated");
-  s->add_option("--threads", c->surface.threads, "worker threads (default: all hardware threads); results do not depend on it");
+  s->add_option("--json", c->json, "also write a JSON summary of what was generated")->type_name("OUTPUT");
+  s->add_option("--threads", c->surface.threads, "worker threads (default: all hardware threads); results do not depend on it")->check(CLI::NonNegativeNumber);
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_synth(*c); }};
 }

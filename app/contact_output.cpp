@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "lib/contact/area_load_fits.hpp"
+#include "lib/core/number_text.hpp"
 #include "roads/height_stats.hpp"
 
 namespace wr::app {
@@ -41,7 +42,15 @@ const ContactStep* add_curve_summaries(nlohmann::json& j, const std::vector<Cont
 }
 
 void print_peak(const ContactStep* peak, const std::vector<ContactStep>& steps) {
-  if (!peak) return;
+  if (!peak) {
+    for (const ContactStep& st : steps)
+      if (st.converged && st.ux != 0) {
+        std::printf("  static friction: none: the block lost contact in the shear phase (A/A0 = 0 at ux = %.4g m); "
+                    "no friction without contact (press deeper: --uz)\n", st.ux);
+        return;
+      }
+    return;
+  }
   if (peak_reached(steps))
     std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
                 peak->ux, int(peak - steps.data()) + 1);
@@ -57,8 +66,10 @@ void print_step_header() {
 }
 
 void print_step_row(int k, const ContactStep& st) {
-  std::printf("  %4d %10.4g %10.4g %11.4e %11.4e %8.4f %8.4f %9.4g %10.3e %10.2e %5d %6d %8.2f%s\n", k, st.uz, st.ux,
-              st.fz, st.fx, st.mu, st.area_fraction, st.sigma_star, st.separation, st.max_penetration,
+  // Without contact there is no friction coefficient to show (Fx/Fz of nothing).
+  const std::string mu = st.area_fraction > 0 && st.fz > 0 ? number_text(st.mu) : "--";
+  std::printf("  %4d %10.4g %10.4g %11.4e %11.4e %8s %8.4f %9.4g %10.3e %10.2e %5d %6d %8.2f%s\n", k, st.uz, st.ux,
+              st.fz, st.fx, mu.c_str(), st.area_fraction, st.sigma_star, st.separation, st.max_penetration,
               st.signorini_iterations, st.linear_iterations, st.wall_s,
               !st.converged ? "  FAILED" : st.failed_attempts > 0 ? "  (cut back)" : "");
   std::fflush(stdout);

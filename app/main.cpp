@@ -5,10 +5,14 @@
 #include <new>
 
 #include "app/commands.hpp"
+#include "app/file_options.hpp"
 #include "lib/core/errors.hpp"
+#include "lib/io/staging.hpp"
 #include "wetroad/version.hpp"
 
 int main(int argc, char** argv) {
+  // Before any thread exists (MPI, PETSc, OpenMP): an interrupted run removes its staging files.
+  wr::install_interrupt_cleanup();
   CLI::App app{
       "wetroad - tyre-road wet friction from road texture.\n"
       "Synthesize or import road surfaces, analyze their texture (PSD, moments, summits, MPD),\n"
@@ -38,7 +42,10 @@ int main(int argc, char** argv) {
   }
   try {
     for (const auto& c : commands)
-      if (c.sub->parsed()) return c.run();
+      if (c.sub->parsed()) {
+        wr::app::check_file_options(*c.sub);
+        return c.run();
+      }
   } catch (const wr::InputError& e) {
     std::cerr << "wetroad: error: " << e.what() << "\n";
     return 2;

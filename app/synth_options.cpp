@@ -53,7 +53,7 @@ bool SynthOptions::any_given() const {
 void add_synth_options(CLI::App& s, SynthOptions& c) {
   c.opts["--scene"] = s.add_option("--scene", c.scene,
                                    "scene JSON with a \"surface\" block of defaults ('default' = "
-                                   "share/scenes/default-asphalt.json); options given here override it");
+                                   "share/scenes/default-asphalt.json); options given here override it")->type_name("FILE");
   c.opts["--size"] = s.add_option("--size", c.size, "grid points per side, N (default 300)");
   c.opts["--nx"] = s.add_option("--nx", c.nx, "grid points along x (overrides --size)");
   c.opts["--ny"] = s.add_option("--ny", c.ny, "grid points along y (overrides --size)");
@@ -95,6 +95,16 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
     if (!j.is_object()) throw InputError(path, "a scene file is a JSON object with a \"surface\" block");
     const auto s = j.value("surface", nlohmann::json::object());
     if (!s.is_object()) throw InputError(path, "\"surface\" must be an object of synthesis options");
+    // A misspelled key would leave its default in force without a word: every key is known.
+    for (const auto& [key, value] : j.items())
+      if (key != "surface" && key != "description" && key != "source")
+        throw InputError(path, "unknown key \"" + key + "\" (a scene file holds \"surface\" and \"description\")");
+    static const char* const kSurfaceKeys[] = {"size", "nx", "ny", "dx", "h0", "hurst", "q0_ratio", "q1",
+                                               "q1_fraction", "oversample", "sampling", "seed"};
+    for (const auto& [key, value] : s.items())
+      if (std::find(std::begin(kSurfaceKeys), std::end(kSurfaceKeys), key) == std::end(kSurfaceKeys))
+        throw InputError(path, "unknown key \"" + key + "\" in \"surface\" (known: size, nx, ny, dx, h0, hurst, "
+                               "q0_ratio, q1, q1_fraction, oversample, sampling, seed)");
     try {
       if (s.contains("size")) p.nx = p.ny = whole_number<std::size_t>(s, "size", 0);
       p.nx = whole_number(s, "nx", p.nx);
@@ -129,7 +139,10 @@ SynthParams resolve_synth_options(const SynthOptions& c) {
   if (c.given("--q1-fraction")) p.q1_fraction = c.q1_fraction;
   if (c.given("--oversample")) p.oversample = c.oversample;
   if (c.given("--sampling")) p.sampling = c.sampling;
-  if (c.given("--seed")) p.seed = c.seed;
+  if (c.given("--seed")) {
+    if (c.seed < 0) throw InputError("--seed", "must be a whole number in 0 ... " + std::to_string(kMaxSeed));
+    p.seed = static_cast<std::uint64_t>(c.seed);
+  }
   p.threads = c.threads;
   return p;
 }

@@ -17,7 +17,7 @@ struct SynthOptions {
   double dx = 0, h0 = 0, hurst = 0, q0_ratio = 0, q1 = 0, q1_fraction = 0;
   int oversample = 1, threads = 0;
   Sampling sampling = Sampling::nyquist;
-  std::uint64_t seed = 1;
+  std::int64_t seed = 1;  // signed, so that "-1" is read as -1 and refused, not wrapped to 2^64 - 1
   std::map<std::string, CLI::Option*> opts;
   bool given(const std::string& name) const { return opts.at(name)->count() > 0; }
   bool any_given() const;  // any synthesis option (or --scene) on the command line

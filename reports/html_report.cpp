@@ -416,7 +416,7 @@ void write_html_report(const std::string& path, const ReportInput& in) {
   if (in.sweeps.empty() && in.friction.empty())
     throw InputError("--sweep", "give at least one sweep (wetroad sweep-coverage or sweep-roughness --out) or friction "
                                 "result (wetroad friction --out)");
-  const std::string charts = temporary_sibling(path) + ".charts";
+  const std::string charts = temporary_sibling(path, ".charts");
   std::filesystem::create_directories(charts);
   std::ostringstream o;
   try {

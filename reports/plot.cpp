@@ -26,7 +26,7 @@ std::string quoted(const std::string& s) {
 void write_svg_plot(const std::string& path, const PlotSpec& spec) {
   std::ostringstream g;
   g.precision(17);
-  const std::string tmp = temporary_sibling(path) + ".svg";
+  const std::string tmp = temporary_sibling(path, ".svg");
   g << "set terminal svg size 800,560 dynamic enhanced font 'sans,12' background rgb 'white'\n";
   g << "set output " << quoted(tmp) << "\n";
   g << "set title " << quoted(spec.title) << " noenhanced\n";
@@ -68,7 +68,7 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
     }
   }
   g << "\nunset output\n";
-  const std::string script = temporary_sibling(path) + ".gp";
+  const std::string script = temporary_sibling(path, ".gp");
   {
     std::ofstream f(script);
     f << g.str();

@@ -30,8 +30,16 @@ std::string num(double v) {
   return b;
 }
 
+// Sample spacings of road texture lie far inside 1 nm ... 1 m; outside, a unit was given wrong,
+// and every cost that scales with extent / spacing (the FEM's mesh, the MPD's resampling) would
+// run away before any check of its own: refused here, where every surface passes.
+constexpr double kMinSpacing = 1e-9, kMaxSpacing = 1.0;
+
 void check_spacing(double d, const std::string& name, const std::string& source) {
   if (!std::isfinite(d) || !(d > 0)) throw InputError(source, name + " must be a positive spacing in m (got " + num(d) + ")");
+  if (d < kMinSpacing || d > kMaxSpacing)
+    throw InputError(source, name + " = " + num(d) + " m is outside 1e-09 ... 1 m, the sample spacings of road texture "
+                                                    "(a unit given wrong?)");
 }
 
 void check_size(const HeightMap& m, const std::string& source) {
@@ -69,7 +77,7 @@ std::optional<SynthesisRecord> read_synthesis(const Hdf5Reader& f) {
   s.psd.k = get("plateau_k");
   s.k_eq44 = get("plateau_k_eq44");
   s.h0_eq44_on_lattice = get("h0_eq44_on_lattice");
-  s.seed = static_cast<std::uint64_t>(whole("seed", 0, 18446744073709549568.0));  // the largest double below 2^64
+  s.seed = static_cast<std::uint64_t>(whole("seed", 0, double(kMaxSeed)));
   s.oversample = static_cast<int>(whole("oversample", 1, 64));
   // Files written before the sampling was recorded are band-limited.
   s.sampling = sampling_from_name(f.attr_string("/synthesis", "sampling").value_or("nyquist")).value_or(Sampling::nyquist);
@@ -117,7 +125,10 @@ LoadedSurface load_hdf5(const std::string& path) {
   check_size(m, path);
   // No unit attribute: metres (design.md); one that is present must be read and known.
   const double scale = unit_scale(f.attr_string(ds, "unit").value_or("m"), path + " (" + ds + " unit)");
-  m.periodic = f.attr_double(ds, "periodic").value_or(0.0) != 0.0;
+  const double periodic = f.attr_double(ds, "periodic").value_or(0.0);
+  if (periodic != 0.0 && periodic != 1.0)
+    throw InputError(path, ds + " attribute periodic is " + num(periodic) + "; it must be 0 (not periodic) or 1 (periodic)");
+  m.periodic = periodic == 1.0;
   m.h.resize(cells);
   f.read_doubles(ds, m.h.data(), cells);
   if (scale != 1.0)
@@ -184,6 +195,8 @@ LoadedSurface load_x3p(const std::string& path) {
   out.source = path;
   out.format = "x3p";
   check_size(x.map, path);
+  check_spacing(x.map.dx, "the x increment", path);
+  if (!x.map.is_profile()) check_spacing(x.map.dy, "the y increment", path);
   out.detail = "X3P " + x.feature_type + ", data type " + std::string(1, x.data_type) +
                (x.checksums_verified ? ", checksums verified" : ", main.xml checksum absent") +
                (x.creator.empty() ? std::string() : ", written by " + x.creator);
@@ -194,6 +207,8 @@ LoadedSurface load_x3p(const std::string& path) {
 
 LoadedSurface load_points(const std::string& path, const TextGridOptions& opt) {
   if (!opt.dx) throw InputError(path, "a point cloud needs --dx (m), the spacing of the grid to interpolate onto");
+  check_spacing(*opt.dx, "--dx", path);
+  if (opt.dy) check_spacing(*opt.dy, "--dy", path);
   PointCloudGridOptions g;
   g.dx = *opt.dx;
   g.dy = opt.dy;
@@ -210,12 +225,20 @@ LoadedSurface load_points(const std::string& path, const TextGridOptions& opt) {
   return out;
 }
 
+// The HDF5 signature stands at byte 0, or after a user block of 512, 1024, 2048, ... bytes
+// (HDF5 File Format Specification, "Format Signature"): a file with a user block is HDF5 too.
 bool looks_like_hdf5(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  char sig[8] = {};
-  in.read(sig, 8);
   static const char kSig[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
-  return in.gcount() == 8 && std::equal(sig, sig + 8, kSig);
+  for (std::uint64_t offset = 0; in; offset = offset ? 2 * offset : 512) {
+    char sig[8] = {};
+    in.seekg(std::streamoff(offset));
+    in.read(sig, 8);
+    if (in.gcount() < 8) return false;
+    if (std::equal(sig, sig + 8, kSig)) return true;
+    if (offset >= (std::uint64_t{1} << 40)) return false;
+  }
+  return false;
 }
 
 }  // namespace
@@ -407,9 +430,13 @@ LoadedSurface load_surface(const std::string& path, const TextGridOptions& text,
     throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
   const std::string ext = std::filesystem::path(path).extension().string();
   LoadedSurface s;
-  if (looks_like_hdf5(path))
+  const bool hdf5 = looks_like_hdf5(path), x3p = !hdf5 && (looks_like_zip(path) || ext == ".x3p");
+  if ((hdf5 || x3p) && !text.given.empty())
+    throw InputError(path, text.given.front() + " applies to plain-text grids and point clouds; an " +
+                               (hdf5 ? "HDF5" : "X3P") + " file carries its own spacing, units and periodicity");
+  if (hdf5)
     s = load_hdf5(path);
-  else if (looks_like_zip(path) || ext == ".x3p")
+  else if (x3p)
     s = load_x3p(path);
   else if (ext == ".h5" || ext == ".hdf5" || ext == ".he5")
     throw InputError(path, "not an HDF5 file");

@@ -36,6 +36,9 @@ struct TextGridOptions {
   bool periodic = false;     // measured data is not periodic unless said so (text grids)
   bool points = false;       // the text holds x y z points, not a grid
   std::optional<double> max_gap;  // m, point clouds: longest triangle edge interpolated across
+  // The text-only options the user gave (e.g. "--unit"): refused for HDF5 and X3P files, which
+  // carry their own spacing, units and periodicity, rather than silently ignored.
+  std::vector<std::string> given;
 };
 
 struct LoadedSurface {

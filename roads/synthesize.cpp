@@ -107,9 +107,15 @@ void validate(const SynthParams& p) {
     validate(band_limited_equivalent(p));
     return;
   }
+  if (p.seed > kMaxSeed) throw InputError("--seed", "must be a whole number in 0 ... " + std::to_string(kMaxSeed));
   if (p.nx < 2 || p.ny < 2) throw InputError("--size", "the grid needs at least 2x2 points");
   if (!(p.dx > 0) || !std::isfinite(p.dx)) throw InputError("--dx", "must be a positive length in m");
   if (!(p.h0 > 0) || !std::isfinite(p.h0)) throw InputError("--h0", "must be a positive rms height in m");
+  // Road textures have rms heights of tenths of a millimetre to a few millimetres; beyond 1 cm
+  // no model here describes the result (slopes of hundreds, mu of millions), so none is made.
+  if (p.h0 > kMaxRoadH0)
+    throw InputError("--h0", "an rms height of " + std::to_string(p.h0) + " m is no road texture (at most " +
+                                 std::to_string(kMaxRoadH0) + " m; a unit given wrong?)");
   if (!(p.hurst > 0 && p.hurst < 1)) throw InputError("--hurst", "must lie in (0, 1)");
   if (!(p.q1_fraction > 0 && p.q1_fraction <= 1)) throw InputError("--q1-fraction", "must lie in (0, 1]");
   if (p.oversample < 1 || p.oversample > 64) throw InputError("--oversample", "must be an integer in 1..64");
@@ -137,6 +143,12 @@ void validate(const SynthParams& p) {
   } else if (qn <= q0) {
     throw InputError("--q0-ratio", "the roll-off q0 = " + fmt(q0) + " 1/m is at or above Nyquist " + fmt(qn));
   }
+  // The low-pass keeps q <= f q1: below the lattice's smallest wavenumber qL it keeps no wave at
+  // all, and the "surface" would be a flat map of zeros with h0 = 0.
+  const double kept = p.q1_fraction * p.q1.value_or(qn);
+  if (kept < g.qL)
+    throw InputError("--q1-fraction", "keeps q <= " + fmt(kept) + " 1/m, below the lattice's smallest wavenumber qL = " +
+                                          fmt(g.qL) + " 1/m: no wave would be left");
 }
 
 namespace {

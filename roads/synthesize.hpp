@@ -54,9 +54,14 @@ struct SynthParams {
   double q1_fraction = 1.0;        // low-pass: keep q <= q1_fraction * q1 (dataset C)
   int oversample = 1;              // generate on a grid S times finer (nx*S, dx/S)
   Sampling sampling = Sampling::nyquist;  // thesis: q1 default 2 pi/dx, aliased (not with oversample)
-  std::uint64_t seed = 1;
+  std::uint64_t seed = 1;          // 0 ... kMaxSeed
   int threads = 0;                 // FFT threads, 0 = hardware
 };
+
+// The one range of seeds, checked on input everywhere: a seed is written to HDF5 as an int64
+// and to JSON as a number that readers may hold as a double, exact only up to 2^53.
+inline constexpr double kMaxRoadH0 = 0.01;  // m: the largest rms height synthesized (validate)
+inline constexpr std::uint64_t kMaxSeed = (std::uint64_t{1} << 53) - 1;
 
 struct SynthResult {
   HeightMap map;                   // periodic, mean zero

@@ -17,10 +17,14 @@ bool fail_if_not_finite(ContactStep& st) {
   return finite;
 }
 
+bool in_shear_contact(const ContactStep& st) {
+  return st.converged && st.ux != 0 && st.area_fraction > 0 && st.fz > 0 && std::isfinite(st.mu);
+}
+
 const ContactStep* peak_friction(const std::vector<ContactStep>& steps) {
   const ContactStep* best = nullptr;
   for (const ContactStep& st : steps)
-    if (st.converged && st.ux != 0 && (!best || st.mu > best->mu)) best = &st;
+    if (in_shear_contact(st) && (!best || st.mu > best->mu)) best = &st;
   return best;
 }
 
@@ -28,7 +32,7 @@ bool peak_reached(const std::vector<ContactStep>& steps) {
   const ContactStep* peak = peak_friction(steps);
   if (!peak) return false;
   for (const ContactStep* st = peak + 1; st < steps.data() + steps.size(); ++st)
-    if (st->converged && st->ux != 0 && st->mu < peak->mu) return true;
+    if (in_shear_contact(*st) && st->mu < peak->mu) return true;
   return false;
 }
 

@@ -54,8 +54,12 @@ struct ContactStep {
 // Returns whether the step was finite.
 bool fail_if_not_finite(ContactStep& step);
 
-// The static friction of a shear test: the converged shear step (ux != 0) with the largest mu;
-// nullptr when there is none.
+// A converged shear step (ux != 0) that still touches the obstacle (A/A0 > 0, Fz > 0): only such
+// a step has a friction coefficient; once the block has lifted off, Fx/Fz is noise over nothing.
+bool in_shear_contact(const ContactStep& st);
+
+// The static friction of a shear test: the shear step in contact with the largest mu; nullptr
+// when there is none (no shear phase, or contact lost in all of it).
 const ContactStep* peak_friction(const std::vector<ContactStep>& steps);
 
 // Whether the shear curve turned over: a converged shear step after the peak has a lower mu.

@@ -33,7 +33,7 @@ ValidityCheck friction_convergence_check(const std::vector<ContactStep>& steps) 
   double worst_drift = 0;
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const ContactStep& s = steps[k];
-    if (s.ux == 0 || !s.converged || !std::isfinite(s.mu_drift)) continue;
+    if (!in_shear_contact(s) || !std::isfinite(s.mu_drift)) continue;  // no contact: no mu to converge
     ++assessed;
     if (worst < 0 || s.mu_drift > worst_drift) {
       worst = int(k);
@@ -59,7 +59,7 @@ ValidityCheck friction_peak_check(const std::vector<ContactStep>& steps) {
   ValidityCheck c{"friction peak reached", true, "", false};
   const ContactStep* peak = peak_friction(steps);
   if (!peak) {
-    c.detail = "no converged shear step";
+    c.detail = "no converged shear step in contact";
     return c;
   }
   c.passed = peak_reached(steps);

@@ -94,7 +94,8 @@ void check_shared_contact_options(const SharedContactOptions& o) {
   if (o.normal_steps < 1 || o.normal_steps > kMaxLoadSteps || (o.shear && (o.shear_steps < 1 || o.shear_steps > kMaxLoadSteps)))
     throw InputError("--steps", "must be 1 ... " + std::to_string(kMaxLoadSteps) + " per phase");
   if (o.refine < 1 || o.refine > 16) throw InputError("--refine", "must be 1 ... 16");
-  if (!(o.young > 0 && std::isfinite(o.young))) throw InputError("--E", "must be a finite modulus > 0 Pa");
+  // Beyond 1e12 Pa (diamond's modulus) forces and energies of road-sized blocks overflow doubles.
+  if (!(o.young > 0 && o.young <= 1e12)) throw InputError("--E", "must be a modulus in (0, 1e12] Pa");
   if (!(o.poisson > -1 && o.poisson < 0.5)) throw InputError("--nu", "must lie in (-1, 0.5)");
   if (!(o.height >= 0 && std::isfinite(o.height))) throw InputError("--height", "must be a finite length >= 0 m (0: a cube)");
   if (!(o.damping > 0 && o.damping <= 2)) throw InputError("--damping", "must lie in (0, 2]");

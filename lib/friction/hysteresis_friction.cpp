@@ -107,7 +107,10 @@ void check_friction_options(const FrictionOptions& opt, const Compound& compound
     throw InputError("--pressure", "the nominal pressure must be a positive number of Pa, got " + number_text(opt.pressure));
   if (opt.points_per_decade < 4 || opt.points_per_decade > 10000)
     throw InputError("--points-per-decade", "must lie in 4 ... 10000");
-  if (!std::isfinite(opt.temperature)) throw InputError("--temperature", "must be a finite temperature in deg C");
+  // A tread on a road, flash temperature included, stays far inside this range; the compound's
+  // WLF shift is fitted nearer still, and beyond it exp() of the shift overflows.
+  if (!(opt.temperature >= -100 && opt.temperature <= 300))
+    throw InputError("--temperature", "must be a temperature in -100 ... 300 deg C, got " + number_text(opt.temperature));
   compound.log10_shift(opt.temperature);  // throws at the WLF pole
 }
 

@@ -1,5 +1,6 @@
 #include "lib/core/provenance.hpp"
 #include "lib/sweep/coverage_sweep.hpp"
+#include "lib/sweep/sweep_engine.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -24,7 +25,7 @@ void check_sweep_spec(const CoverageSweepSpec& s) {
     if (!(c >= 0 && c < 1)) throw InputError("--coverages", "each coverage must be a fraction in [0, 1)");
     if (i > 0 && !(c > s.coverages[i - 1])) throw InputError("--coverages", "coverages must be ascending and distinct");
   }
-  if (s.realizations < 1) throw InputError("--realizations", "must be >= 1");
+  check_realizations(s.realizations, s.synth ? s.synth->seed : 0);
   if (s.realizations > 1 && !s.synth) throw InputError("--realizations", "only synthetic surfaces have realizations");
   if (!s.synth && s.surface_path.empty()) throw InputError("--surface", "give a surface file or synthesis options");
   if (s.synth) validate(*s.synth);  // now, not when the first run starts

@@ -1,5 +1,7 @@
 #include "lib/core/provenance.hpp"
 #include "lib/sweep/roughness_sweep.hpp"
+#include "lib/sweep/sweep_engine.hpp"
+#include "lib/core/number_text.hpp"
 
 #include <chrono>
 #include <algorithm>
@@ -78,7 +80,11 @@ void check_roughness_spec(const RoughnessSweepSpec& s) {
                                                                : (v > 0 && v <= 1);
     if (!ok) throw InputError("--values", std::string("a value out of range for ") + parameter_name(s.parameter));
   }
-  if (s.realizations < 1) throw InputError("--realizations", "must be >= 1");
+  std::vector<double> sorted = s.values;
+  std::sort(sorted.begin(), sorted.end());
+  if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+    throw InputError("--values", "the value " + number_text(*twice) + " is given twice; give each value once");
+  check_realizations(s.realizations, s.base.seed);
   if (s.hysteresis) check_friction_scene(*s.hysteresis);
   else check_contact_scene(s.scene);
   // Every surface the sweep will synthesize, checked now rather than when its run starts.

@@ -1,5 +1,7 @@
 #include "lib/sweep/sweep_engine.hpp"
 
+#include "roads/synthesize.hpp"
+
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -52,9 +54,17 @@ std::string first_difference(const nlohmann::json& stored, const nlohmann::json&
   if (path == "/surface/content_sha256")
     return "the surface file " + spec["surface"].value("path", std::string("?")) +
            " has other content than when the sweep was checkpointed";
-  std::string name = path.substr(1);
+  // A change inside a list (an element added: ".../-", or changed: ".../3") is told as the whole
+  // list, which is what the user typed (--coverages 0 0.2 0.4).
+  nlohmann::json::json_pointer ptr(path);
+  while (!ptr.empty()) {
+    const nlohmann::json::json_pointer parent = ptr.parent_pointer();
+    const bool in_list = (stored.contains(parent) && stored[parent].is_array()) || (spec.contains(parent) && spec[parent].is_array());
+    if (!in_list) break;
+    ptr = parent;
+  }
+  std::string name = ptr.to_string().substr(1);
   std::replace(name.begin(), name.end(), '/', '.');
-  const nlohmann::json::json_pointer ptr(path);
   const std::string was = stored.contains(ptr) ? short_value(stored[ptr]) : "absent";
   const std::string now = spec.contains(ptr) ? short_value(spec[ptr]) : "absent";
   return name + " is " + now + ", was " + was;
@@ -214,6 +224,13 @@ std::string duration_text(double seconds) {
   else if (seconds < 7200) std::snprintf(b, sizeof b, "%.1f min", seconds / 60);
   else std::snprintf(b, sizeof b, "%.1f h", seconds / 3600);
   return b;
+}
+
+void check_realizations(int realizations, std::uint64_t first_seed) {
+  if (realizations < 1 || realizations > 100000) throw InputError("--realizations", "must be 1 ... 100000");
+  if (first_seed > kMaxSeed || kMaxSeed - first_seed < std::uint64_t(realizations - 1))
+    throw InputError("--seed", "the realizations' seeds (seed ... seed + R - 1) must stay within 0 ... " +
+                                   std::to_string(kMaxSeed));
 }
 
 }  // namespace wr

@@ -9,6 +9,7 @@
 // which rank ran what.
 #include <mpi.h>
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
@@ -73,5 +74,9 @@ int run_pending(const SweepCheckpoint& cp, const std::vector<int>& pending, MPI_
 
 // "12 s", "3.4 min", "2.1 h" ("?" when not finite).
 std::string duration_text(double seconds);
+
+// --realizations R (1 ... 100000) of synthetic surfaces seeded seed, seed + 1, ...: the last
+// seed must stay within kMaxSeed (roads/synthesize.hpp). InputError naming the option otherwise.
+void check_realizations(int realizations, std::uint64_t first_seed);
 
 }  // namespace wr
