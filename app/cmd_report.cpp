@@ -48,7 +48,16 @@ int run_report(const ReportCli& c) {
     in.measured_path = c.measured;
   }
   if (c.ifi_b_opt->count() > 0) in.ifi = IfiConstants{c.ifi_a, c.ifi_b, c.ifi_c, c.ifi_tx};
-  write_html_report(out_path, in);
+  try {
+    write_html_report(out_path, in);
+  } catch (const nlohmann::json::exception& e) {
+    // A record edited or damaged after wetroad wrote it: a field missing or of the wrong type.
+    std::string files;
+    for (const auto& [file, j] : in.sweeps) files += (files.empty() ? "" : ", ") + file;
+    for (const auto& [file, j] : in.friction) files += (files.empty() ? "" : ", ") + file;
+    throw InputError(files, std::string("a field is missing or of the wrong type (") + e.what() +
+                                "); not a record as wetroad writes it");
+  }
   outputs.commit();
   if (!c.quiet)
     std::printf("wrote %s: %zu sweep(s), %zu friction result(s)%s; open it in any browser (self-contained, offline)\n",

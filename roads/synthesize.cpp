@@ -114,8 +114,8 @@ void validate(const SynthParams& p) {
   // Road textures have rms heights of tenths of a millimetre to a few millimetres; beyond 1 cm
   // no model here describes the result (slopes of hundreds, mu of millions), so none is made.
   if (p.h0 > kMaxRoadH0)
-    throw InputError("--h0", "an rms height of " + std::to_string(p.h0) + " m is no road texture (at most " +
-                                 std::to_string(kMaxRoadH0) + " m; a unit given wrong?)");
+    throw InputError("--h0", "an rms height of " + fmt(p.h0) + " m is no road texture (at most " + fmt(kMaxRoadH0) +
+                                 " m; a unit given wrong?)");
   if (!(p.hurst > 0 && p.hurst < 1)) throw InputError("--hurst", "must lie in (0, 1)");
   if (!(p.q1_fraction > 0 && p.q1_fraction <= 1)) throw InputError("--q1-fraction", "must lie in (0, 1]");
   if (p.oversample < 1 || p.oversample > 64) throw InputError("--oversample", "must be an integer in 1..64");

@@ -300,6 +300,8 @@ TEST(ContactCurve, PeakIsReachedOnlyWhenALaterShearStepFalls) {
       st.ux = 1e-3 * double(k + 1);
       st.mu = mus[k];
       st.converged = int(k) < failed_from;
+      st.area_fraction = 0.1;  // in contact (a lifted block has no mu: below)
+      st.fz = 1;
       steps.push_back(st);
     }
     return steps;
@@ -319,6 +321,12 @@ TEST(ContactCurve, PeakIsReachedOnlyWhenALaterShearStepFalls) {
   EXPECT_DOUBLE_EQ(peak_friction(unconverged_fall)->mu, 0.3);
   EXPECT_FALSE(peak_reached(unconverged_fall));
   EXPECT_FALSE(peak_reached(curve({})));
+  // Contact lost (A/A0 = 0): Fx/Fz of nothing is no friction, however large (issue 54: 13.64).
+  auto lifted = curve({0.1, 13.64});
+  lifted.back().area_fraction = 0;
+  EXPECT_DOUBLE_EQ(peak_friction(lifted)->mu, 0.1);
+  for (auto& st : lifted) st.area_fraction = 0;
+  EXPECT_EQ(peak_friction(lifted), nullptr);
 }
 
 TEST(Fem, PenetrationRetriesLastWhileTheDeepestNodeComesOut) {

@@ -143,12 +143,21 @@ TEST(FrictionDrift, CheckFlagsAShearStepStillSliding) {
   steps[2].ux = 2e-3;
   steps[2].mu_drift = 0.3;
   steps[2].converged = true;
+  for (int k : {1, 2}) {  // in contact: only such a step has a mu to judge
+    steps[std::size_t(k)].area_fraction = 0.1;
+    steps[std::size_t(k)].fz = 1;
+    steps[std::size_t(k)].mu = 0.2;
+  }
   ValidityCheck c = friction_convergence_check(steps);
   EXPECT_EQ(c.name, "friction converged");
   EXPECT_FALSE(c.passed);
   EXPECT_FALSE(c.decides_model);  // a flag: no other model answers friction
   EXPECT_NE(c.detail.find("step 3"), std::string::npos) << c.detail;
   steps[2].mu_drift = 0.01;
+  EXPECT_TRUE(friction_convergence_check(steps).passed);
+  // A step that lost contact has no friction coefficient: its drift is not judged (issue 54).
+  steps[2].mu_drift = 0.3;
+  steps[2].area_fraction = 0;
   EXPECT_TRUE(friction_convergence_check(steps).passed);
   steps.resize(1);
   c = friction_convergence_check(steps);
