@@ -102,10 +102,14 @@ PsdFit fit_self_affine(const RadialPsd& psd, double nyquist, bool profile) {
   double peak = 0;
   for (double c : psd.C) peak = std::max(peak, c);
   std::vector<double> x, y, w;
-  std::size_t cut = psd.q.size();
-  for (std::size_t i = 0; i < psd.q.size(); ++i)
-    if (psd.C[i] <= 1e-8 * peak) {
-      cut = i;
+  // The cut-off is where the spectrum falls below 1e-8 of its peak and stays there (a synthesized
+  // surface's q1). Not at the first bin below it: a measured profile's periodogram scatters bin by
+  // bin (exponentially, chi-square with 2 degrees of freedom), and over the millions of bins of a
+  // long record some bin dips that low at random, which cut the fit at a random wavenumber.
+  std::size_t cut = 0;
+  for (std::size_t i = psd.q.size(); i-- > 0;)
+    if (psd.C[i] > 1e-8 * peak) {
+      cut = i + 1;
       break;
     }
   // The bin just below a hard cut-off is only partly filled: leave it out too.

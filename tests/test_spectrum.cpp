@@ -376,6 +376,21 @@ TEST(PsdFit, RecoversAnExactSelfAffineProfileSpectrum) {
   EXPECT_GT(f.r2, 1 - 1e-10);
 }
 
+// A measured periodogram dips far below its mean at random bins: one bin below 1e-8 of the peak
+// is not a cut-off (all bins fitted), while a spectrum that stays below it is cut there.
+TEST(PsdFit, OneLowBinIsNotACutOff) {
+  RadialPsd p = self_affine_bins(4000, 2 * kPi / 2.0, 50.0, 1e-9, 2.0, 0.3, 4);
+  p.C[1000] = 1e-20;  // 1e-11 of the plateau
+  const PsdFit f = fit_self_affine(p, 1e30, true);
+  ASSERT_TRUE(f.ok);
+  EXPECT_EQ(f.bins, 4000u);
+  EXPECT_NEAR(f.beta, 2.0, 0.05);
+  for (std::size_t i = 3000; i < 4000; ++i) p.C[i] = 1e-21;  // a hard cut-off at bin 3000
+  const PsdFit g = fit_self_affine(p, 1e30, true);
+  EXPECT_EQ(g.bins, 2999u);  // the partly filled bin below the cut-off left out too
+  EXPECT_NEAR(g.q_max, p.q[2998], 1e-9 * p.q[2998]);
+}
+
 // The fit is linear in the number of bins: 10^6 bins (a 2-million-sample profile; the per-knee
 // refit needed hours) in well under the limit on a loaded 2-core machine.
 TEST(PsdFit, AMillionBinsFitInSeconds) {
