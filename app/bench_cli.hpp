@@ -21,6 +21,7 @@ BenchEntry add_summits_bench(CLI::App& bench);  // app/bench_cli_surfaces.cpp
 BenchEntry add_water_bench(CLI::App& bench);  // app/bench_cli_surfaces.cpp
 BenchEntry add_coverage_bench(CLI::App& bench);  // app/bench_cli_surfaces.cpp
 BenchEntry add_friction_bench(CLI::App& bench);  // app/bench_cli_surfaces.cpp
+BenchEntry add_long_profile_bench(CLI::App& bench);  // app/bench_cli_surfaces.cpp
 BenchEntry add_spectral_speed_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_spectral_shear_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_kappa_bench(CLI::App& bench);  // app/bench_cli_contact.cpp

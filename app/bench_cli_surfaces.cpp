@@ -11,6 +11,7 @@
 #include "app/bench_cli.hpp"
 #include "bench/bench_friction.hpp"
 #include "bench/bench_harness.hpp"
+#include "bench/bench_long_profile.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
 #include "lib/core/provenance.hpp"
@@ -146,7 +147,66 @@ int run_friction(const FrictionBenchCli& c) {
   return 0;
 }
 
+struct LongProfileBenchCli {
+  bench::LongProfileOptions o;
+  std::string json;
+};
+
+int run_long_profile(LongProfileBenchCli& c) {
+  if (c.o.samples < 1000 || c.o.samples > 2'000'000'000) throw InputError("--samples", "must be 1000 ... 2e9");
+  if (!(c.o.dx > 0 && c.o.dx < 1)) throw InputError("--dx", "must be a spacing in m, 0 < dx < 1");
+  if (!(c.o.evaluation_length >= 0 && std::isfinite(c.o.evaluation_length)))
+    throw InputError("--evaluation-length", "must be a length >= 0 in m");
+  if (!(c.o.dropout_share >= 0 && c.o.dropout_share <= 0.5)) throw InputError("--dropouts", "must be a share 0 ... 0.5");
+  if (!(c.o.spike_rate >= 0 && c.o.spike_rate <= 0.1)) throw InputError("--spikes", "must be a rate 0 ... 0.1 per sample");
+  c.o.scratch_dir = std::filesystem::temp_directory_path().string();
+  const nlohmann::json r = bench::long_profile(c.o);
+  if (r.contains("error")) throw InputError("bench long-profile", r["error"].get<std::string>());
+  std::printf("analyze of a continuous record: %zu samples at %.3g mm (%.4g km), %zu dropouts, %zu spikes added\n",
+              c.o.samples, c.o.dx * 1e3, r["length_m"].get<double>() / 1e3, r["dropouts"].get<std::size_t>(),
+              r["spikes_added"].get<std::size_t>());
+  std::printf("  synthesize %.2f s, write HDF5 %.2f s (not counted)\n", r["synth_s"].get<double>(), r["write_s"].get<double>());
+  std::printf("  read %.2f s + analyze %.2f s = %.2f s wall; peak RSS %.0f MiB (%.1f x the profile's %.0f MiB)\n",
+              r["read_s"].get<double>(), r["analyze_s"].get<double>(), r["total_s"].get<double>(),
+              r["peak_rss_bytes"].get<double>() / 1048576.0,
+              r["peak_rss_bytes"].get<double>() / r["profile_bytes"].get<double>(), r["profile_bytes"].get<double>() / 1048576.0);
+  std::printf("  analyze phases [s]: %s\n", r["phases_s"].dump().c_str());
+  std::printf("  MPD %.4g mm (%zu/%zu valid segments, %zu spike samples); per %.4g m: %zu counted of %zu, "
+              "mean %.4g mm, min %.4g, max %.4g\n",
+              r["mpd"].get<double>() * 1e3, r["valid_segments"].get<std::size_t>(), r["segments"].get<std::size_t>(),
+              r["spike_samples"].get<std::size_t>(), c.o.evaluation_length, r["evaluations_counted"].get<std::size_t>(),
+              r["evaluations"].get<std::size_t>(), r["evaluation_mean"].is_number() ? r["evaluation_mean"].get<double>() * 1e3 : NAN,
+              r["evaluation_min"].is_number() ? r["evaluation_min"].get<double>() * 1e3 : NAN,
+              r["evaluation_max"].is_number() ? r["evaluation_max"].get<double>() * 1e3 : NAN);
+  std::printf("  PSD: %zu bins, %zu of them fitted\n", r["psd_bins"].get<std::size_t>(), r["psd_fit_bins"].get<std::size_t>());
+  if (!c.o.file.empty()) std::printf("  record kept: %s\n", c.o.file.c_str());
+  if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
+
+BenchEntry add_long_profile_bench(CLI::App& bench) {
+  auto c = std::make_shared<LongProfileBenchCli>();
+  CLI::App* s = bench.add_subcommand("long-profile",
+                                     "analyze of a long continuous texture record (default 10 km at 0.5 mm) with dropouts "
+                                     "and spikes: wall time and peak memory");
+  s->footer(
+      "Synthesizes a road-like record (macrotexture, megatexture, a grade wave; dropouts in bursts as NaN and\n"
+      "spikes of 5-30 mm), writes it as an HDF5 /profile, then reads and analyzes it in a fresh process as\n"
+      "`wetroad analyze FILE` does (continuous MPD, MPD per evaluation length). Peak RSS is that process's.\n"
+      "Example: wetroad bench long-profile --samples 20000000 --file big.h5   (then time `wetroad analyze big.h5`)");
+  s->add_option("--samples", c->o.samples, "samples in the record")->check(CLI::Range(8, 1000000000))->capture_default_str();
+  s->add_option("--dx", c->o.dx, "sample spacing in m")->check(CLI::Range(1e-9, 1.0))->capture_default_str();
+  s->add_option("--evaluation-length", c->o.evaluation_length, "MPD evaluation length in m (0 = off)")->capture_default_str();
+  s->add_option("--dropouts", c->o.dropout_share, "share of samples that are dropouts")->check(CLI::Range(0.0, 0.5))->capture_default_str();
+  s->add_option("--spikes", c->o.spike_rate, "spikes per sample")->check(CLI::Range(0.0, 0.1))->capture_default_str();
+  s->add_option("--seed", c->o.seed, "random seed")->capture_default_str();
+  s->add_option("--threads", c->o.threads, "worker threads (default: all hardware threads)")->check(CLI::NonNegativeNumber);
+  s->add_option("--file", c->o.file, "write the record here and keep it (default: a temporary file, removed)")->type_name("OUTPUT");
+  s->add_option("--json", c->json, "write the results as JSON")->type_name("OUTPUT");
+  return {s, [c] { return run_long_profile(*c); }, &c->json, nullptr, nullptr};
+}
 
 BenchEntry add_speed_bench(CLI::App& bench) {
   auto o = std::make_shared<SpeedBenchCli>();

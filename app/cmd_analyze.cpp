@@ -20,17 +20,38 @@ struct AnalyzeCli {
   double dx = 0, dy = 0;
   bool periodic = false, quiet = false, no_expected_mpd = false, keep_plates = false, points = false;
   double max_gap = 0;
+  double evaluation_length = 10.0;  // m; the default applies to 1-D profiles only
   int threads = 0;
   MpdOptions mpd;
-  CLI::Option *dx_opt = nullptr, *dy_opt = nullptr, *max_gap_opt = nullptr;
+  CLI::Option *dx_opt = nullptr, *dy_opt = nullptr, *max_gap_opt = nullptr, *evaluation_opt = nullptr;
   std::vector<CLI::Option*> text_only;  // --dx --dy --unit --points --max-gap --periodic
 };
+
+// MPD per evaluation length (ISO 13473-1:2019 reports a continuous record per evaluation length):
+// by default 10 m along a 1-D profile (a record shorter than that has none), none for maps unless
+// asked (then along the rows). A whole number of segments, so that each evaluation length holds
+// the same segments whatever the rounding.
+double evaluation_length_for(const AnalyzeCli& c, bool profile) {
+  const bool given = c.evaluation_opt->count() > 0;
+  const double L = c.evaluation_length;
+  if (!given) return profile ? L : 0.0;
+  if (!(std::isfinite(L) && L >= 0)) throw InputError("--evaluation-length", "must be a length >= 0 in m (0 switches it off)");
+  if (L == 0) return 0.0;
+  const double segments = L / c.mpd.baseline;
+  if (!(segments >= 1 && segments <= 1e9) || std::abs(segments - std::round(segments)) > 1e-6 * segments) {
+    char b[160];
+    std::snprintf(b, sizeof b, "must be a whole number of MPD segments of %g m (--baseline), got %g m", c.mpd.baseline, L);
+    throw InputError("--evaluation-length", b);
+  }
+  return L;
+}
 
 int run_analyze(const AnalyzeCli& c) {
   if (!(c.mpd.baseline > 0)) throw InputError("--baseline", "must be a positive length in m");
   if (!(c.mpd.lowpass_wavelength >= 0)) throw InputError("--lowpass", "must be >= 0 m (0 switches it off)");
   if (!(c.mpd.spike_alpha >= 0 && std::isfinite(c.mpd.spike_alpha)))
     throw InputError("--spike-alpha", "must be a finite slope >= 0 (0 switches spike removal off)");
+  (void)evaluation_length_for(c, false);  // a bad --evaluation-length is refused before the file is read
   OutputSet outputs;
   outputs.input(c.input);
   const std::string json_path = outputs.add("--json", c.json), out_path = outputs.add("--out", c.out);
@@ -65,6 +86,7 @@ int run_analyze(const AnalyzeCli& c) {
   // Records of laser profilometers start and end on calibration plates; maps do not.
   opt.mpd.cut_plates = surface.map.is_profile() && !c.keep_plates;
   opt.expected_mpd = !c.no_expected_mpd;
+  opt.mpd.evaluation_length = evaluation_length_for(c, surface.map.is_profile());
   AnalysisReport report = analyze_surface(surface, opt);
 
   PhaseTimer write;
@@ -79,6 +101,7 @@ int run_analyze(const AnalyzeCli& c) {
                      {"resample", c.mpd.resample},
                      {"spike_alpha", c.mpd.spike_alpha},
                      {"cut_plates", opt.mpd.cut_plates},
+                     {"evaluation_length", opt.mpd.evaluation_length},
                      {"expected_mpd", opt.expected_mpd}};
   if (c.points) prov.parameters["max_gap"] = c.max_gap_opt->count() ? nlohmann::json(c.max_gap) : nlohmann::json("auto");
   prov.model = "analysis";
@@ -146,6 +169,11 @@ Command add_analyze(CLI::App& root) {
                 "MPD spikes (ISO 13473-1 Annex E): neighbours of the resampled profile differing by at least "
                 "alpha x the spacing are both dropped and interpolated; 0 = off")
       ->capture_default_str();
+  c->evaluation_opt =
+      s->add_option("--evaluation-length", c->evaluation_length,
+                    "MPD also per evaluation length in m along each profile (ISO 13473-1 continuous records, "
+                    "e.g. 10 or 20): a whole number of segments; 0 = off (default: 10 for 1-D profiles, off for maps; "
+                    "given for a map, along its rows)");
   s->add_flag("--keep-plates", c->keep_plates,
               "1-D profiles: keep flat runs at the record's ends that stand 2 mm or more off the road (calibration "
               "plates, cut by default; maps are never cut)");

@@ -95,6 +95,29 @@ std::string format_analysis(const AnalysisReport& r) {
                 r.mpd.valid_segments, r.mpd.segments, r.mpd.baseline_used * 1e3, r.mpd.spikes,
                 r.mpd.note.empty() ? "" : "\n    ", r.mpd.note.empty() ? "" : ("FLAG: " + r.mpd.note).c_str());
   out += b;
+  if (!r.mpd.evaluations.empty()) {
+    const auto& m = r.mpd;
+    std::size_t partial = 0, invalid = 0;
+    for (const EvaluationMpd& e : m.evaluations) partial += !e.complete, invalid += e.complete && !e.valid;
+    std::snprintf(b, sizeof b,
+                  "    per %.4g m evaluation length (ISO 13473-1 continuous record): %zu valid of %zu complete%s, MPD "
+                  "mean %s m, min %s m, max %s m\n",
+                  m.evaluation_length, m.evaluations_counted, m.evaluations_counted + invalid,
+                  partial ? (" (+" + std::to_string(partial) + " shorter at the end, not counted)").c_str() : "",
+                  cell(m.evaluation_mean).c_str(), cell(m.evaluation_min).c_str(), cell(m.evaluation_max).c_str());
+    out += b;
+    // A short record gets its table here; a long one's is in --json and --out (one row per length).
+    if (m.evaluations.size() <= 12) {
+      for (const EvaluationMpd& e : m.evaluations) {
+        std::snprintf(b, sizeof b, "      %10.4g - %-10.4g m  MPD %10s m  %zu/%zu valid segments%s\n", e.start,
+                      e.start + e.length, cell(e.mpd).c_str(), e.valid_segments, e.segments,
+                      !e.complete ? ", shorter" : !e.valid ? ", INVALID (clause 7.10)" : "");
+        out += b;
+      }
+    } else {
+      out += "      (the table of every evaluation length: --json mpd_evaluation, --out /mpd_evaluation)\n";
+    }
+  }
   if (r.expected_mpd) {
     std::snprintf(b, sizeof b, "    prescribed MPD: on %zu standard 100 mm segments (+- %.2g m); %s\n",
                   r.expected_mpd->segments, r.expected_mpd->std_error, r.expected_mpd->assumption.c_str());

@@ -194,6 +194,24 @@ nlohmann::json AnalysisReport::to_json() const {
                      {"baseline", mpd.baseline_used},
                      {"lowpass_applied", mpd.lowpass_applied},
                      {"note", mpd.note}};
+  if (mpd.evaluation_length > 0) {
+    json table = json::array();
+    for (const EvaluationMpd& e : mpd.evaluations)
+      table.push_back({{"profile", e.profile},
+                       {"start", e.start},
+                       {"length", e.length},
+                       {"segments", e.segments},
+                       {"valid_segments", e.valid_segments},
+                       {"mpd", num_json(e.mpd)},
+                       {"valid", e.valid},
+                       {"complete", e.complete}});
+    j["mpd_evaluation"] = {{"length", mpd.evaluation_length},     {"evaluations", mpd.evaluations.size()},
+                           {"counted", mpd.evaluations_counted},  {"mean", num_json(mpd.evaluation_mean)},
+                           {"min", num_json(mpd.evaluation_min)}, {"max", num_json(mpd.evaluation_max)},
+                           {"table", std::move(table)}};
+  } else {
+    j["mpd_evaluation"] = nullptr;
+  }
   json pa = json::array();
   for (const auto& [s, a] : persson_area) pa.push_back({{"sigma_star", s}, {"area_fraction", a}});
   j["persson_area"] = pa;
@@ -242,7 +260,10 @@ nlohmann::json AnalysisReport::to_json() const {
 
 void write_analysis_file(const std::string& path, const AnalysisReport& r, const Provenance& prov) {
   Hdf5Writer w(path);
-  const auto summary = r.to_json();
+  auto summary = r.to_json();
+  // The per-evaluation-length table goes to /mpd_evaluation below: a 10 km record's 1000 rows would
+  // overflow an HDF5 attribute (64 KiB).
+  if (summary["mpd_evaluation"].is_object()) summary["mpd_evaluation"].erase("table");
   w.create_group("/psd");
   w.write_vector("/psd/q", r.psd.q);
   w.write_vector("/psd/C", r.psd.C);
@@ -252,6 +273,25 @@ void write_analysis_file(const std::string& path, const AnalysisReport& r, const
   if (!r.profile) {
     w.create_group("/summits");
     w.write_vector("/summits/xi", r.summit_xi);
+  }
+  if (!r.mpd.evaluations.empty()) {  // one row per evaluation length (ISO 13473-1 continuous records)
+    const auto column = [&](auto get) {
+      std::vector<double> v;
+      v.reserve(r.mpd.evaluations.size());
+      for (const EvaluationMpd& e : r.mpd.evaluations) v.push_back(double(get(e)));
+      return v;
+    };
+    w.create_group("/mpd_evaluation");
+    w.write_vector("/mpd_evaluation/profile", column([](const EvaluationMpd& e) { return e.profile; }));
+    w.write_vector("/mpd_evaluation/start", column([](const EvaluationMpd& e) { return e.start; }));
+    w.write_vector("/mpd_evaluation/length", column([](const EvaluationMpd& e) { return e.length; }));
+    w.write_vector("/mpd_evaluation/segments", column([](const EvaluationMpd& e) { return e.segments; }));
+    w.write_vector("/mpd_evaluation/valid_segments", column([](const EvaluationMpd& e) { return e.valid_segments; }));
+    w.write_vector("/mpd_evaluation/mpd", column([](const EvaluationMpd& e) { return e.mpd; }));
+    w.write_vector("/mpd_evaluation/valid", column([](const EvaluationMpd& e) { return e.valid; }));
+    w.write_vector("/mpd_evaluation/complete", column([](const EvaluationMpd& e) { return e.complete; }));
+    w.write_attr("/mpd_evaluation", "evaluation_length", r.mpd.evaluation_length);
+    w.write_attr("/mpd_evaluation", "unit", std::string("m"));
   }
   for (const auto& [key, value] : summary.items())
     if (value.is_number()) w.write_attr("/", key, value.get<double>());

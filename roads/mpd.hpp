@@ -38,6 +38,23 @@ struct MpdOptions {
   double max_dropout_fraction = 0.10;   // of a segment's raw samples
   double max_spike_fraction = 0.05;     // of a segment's resampled samples
   bool cut_plates = false;              // drop reference plates at the record's ends (reference_plates.hpp)
+  // m; > 0: the segments are also grouped into consecutive evaluation lengths of this length
+  // along each profile (ISO 13473-1:2019 reports a continuous record as one MPD per evaluation
+  // length, e.g. 10 m or 20 m), each with its own MPD and validity (7.10). 0: none.
+  double evaluation_length = 0;
+};
+
+// One evaluation length of a profile: the segments whose start lies in [start, start + length)
+// of the profile (after cut reference plates). MPD is the mean MSD of its valid segments; it is
+// valid when at least half its segments are (clause 7.10, applied per evaluation length). The
+// last one of a profile may be shorter (`complete` false): it is listed, not counted in the
+// statistics.
+struct EvaluationMpd {
+  std::size_t profile = 0;         // index of the profile (row) it belongs to
+  double start = 0, length = 0;    // m, from the profile's first sample; length its segments cover
+  std::size_t segments = 0, valid_segments = 0;
+  double mpd = NAN;                // m
+  bool valid = false, complete = false;
 };
 
 // The spacing clause 7.4 resamples to from raw spacing dx: 0.5 mm, or 1.0 mm when dx is
@@ -60,11 +77,13 @@ struct MpdAccumulator {
   double shortest_baseline = 0;    // m, the shortest segment length used
   double spacing = 0;              // m, the (re)sampled spacing of the last profile
   double plate_start = 0, plate_end = 0;  // m, cut as reference plates (summed over profiles)
+  std::vector<EvaluationMpd> evaluations;  // MpdOptions::evaluation_length > 0, in profile order
 };
 
-// Processes one profile of n samples (a copy is modified), adding its segments to `acc`.
+// Processes one profile of n samples (modified: pass a copy, or move a profile no longer
+// needed), adding its segments to `acc`. `profile` numbers the evaluation lengths' profile.
 void add_profile_segments(std::vector<double> h, std::vector<unsigned char> invalid, double dx,
-                          const MpdOptions& opt, MpdAccumulator& acc);
+                          const MpdOptions& opt, MpdAccumulator& acc, std::size_t profile = 0);
 
 struct MpdResult {
   double mpd = 0;       // m
@@ -78,6 +97,13 @@ struct MpdResult {
   double baseline_used = 0;  // m
   bool lowpass_applied = true;
   std::string note;
+  // Per evaluation length (MpdOptions::evaluation_length > 0; rows of a map and 1-D profiles
+  // only; empty when no profile is as long as one evaluation length), and the count, mean, min
+  // and max of the MPD of the complete, valid ones.
+  double evaluation_length = 0;  // m, as asked
+  std::vector<EvaluationMpd> evaluations;
+  std::size_t evaluations_counted = 0;
+  double evaluation_mean = NAN, evaluation_min = NAN, evaluation_max = NAN;  // m
 };
 
 MpdResult summarize(const MpdAccumulator& acc, const MpdOptions& opt);

@@ -6,9 +6,10 @@
 // Method: least squares in log-log space, each bin weighted by the number of coefficients it
 // averages (the relative scatter of a bin mean falls like 1/sqrt(count)); the model
 // log C = a - beta max(0, log(q/q0)) is linear in (a, beta) for fixed q0, so q0 is found by a
-// scan over the bin positions refined by golden-section search. Bins above Nyquist (incomplete
-// rings) and bins where the spectrum has been cut off (power below 1e-8 of the peak, plus the
-// partially cut bin before them) are left out.
+// scan over the bin positions refined by golden-section search; each trial knee costs O(log n)
+// (suffix sums, psd_fit.cpp), the whole fit O(n) in the number of bins. Bins above Nyquist (incomplete
+// rings) and bins where the spectrum has been cut off (power below 1e-8 of the peak from there to
+// the end, plus the partially cut bin before them) are left out.
 #include "roads/spectrum.hpp"
 
 namespace wr {

@@ -49,27 +49,38 @@ class ZipReader {
     // ZIP_CHECKCONS: a damaged central directory is an error here, not garbage later.
     za_ = zip_open(path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &err);
     if (!za_) throw InputError(path, "not a readable X3P archive (zip: " + zip_error_text(err) + ")");
+    try {
+      locate_main();
+    } catch (...) {
+      zip_discard(za_);
+      throw;
+    }
   }
   ~ZipReader() { zip_discard(za_); }
   ZipReader(const ZipReader&) = delete;
   ZipReader& operator=(const ZipReader&) = delete;
 
-  bool has(const std::string& name) const { return zip_name_locate(za_, name.c_str(), 0) >= 0; }
+  // Names below are relative to main.xml's folder (ISO 25178-72 links are relative to it):
+  // the archive's root, or the one top folder that zipping a folder puts everything under.
+  const std::string& folder() const { return folder_; }
+  std::string full(const std::string& name) const { return folder_ + name; }
+
+  bool has(const std::string& name) const { return zip_name_locate(za_, full(name).c_str(), 0) >= 0; }
 
   // The entry's size as the directory states it; InputError when there is no such entry.
   std::size_t size(const std::string& name) const {
     zip_stat_t st;
     zip_stat_init(&st);
-    if (zip_stat(za_, name.c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
-      throw InputError(path_, "the X3P archive has no " + name);
+    if (zip_stat(za_, full(name).c_str(), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
+      throw InputError(path_, "the X3P archive has no " + full(name));
     return std::size_t(st.size);
   }
 
   // The whole entry; a CRC mismatch (a damaged archive) surfaces as a read error.
   std::string read(const std::string& name) const {
     const std::size_t stated = size(name);
-    require_memory(stated, 1, 2.0, path_, "reading " + name);
-    std::unique_ptr<zip_file_t, decltype(&zip_fclose)> f(zip_fopen(za_, name.c_str(), 0), &zip_fclose);
+    require_memory(stated, 1, 2.0, path_, "reading " + full(name));
+    std::unique_ptr<zip_file_t, decltype(&zip_fclose)> f(zip_fopen(za_, full(name).c_str(), 0), &zip_fclose);
     if (!f) throw InputError(path_, "cannot open " + name + " in the X3P archive (" + zip_strerror(za_) + ")");
     std::string bytes(stated, '\0');
     std::size_t got = 0;
@@ -86,8 +97,34 @@ class ZipReader {
   }
 
  private:
+  // Finds the archive's one main.xml: at the root, or as FOLDER/main.xml under one top folder.
+  // Two of them (a root one and a folder's, or two folders') would leave it to chance which
+  // measurement is read: refused.
+  void locate_main() {
+    const zip_int64_t n = zip_get_num_entries(za_, 0);
+    std::vector<std::string> found;
+    for (zip_int64_t i = 0; i < n; ++i) {
+      const char* raw = zip_get_name(za_, zip_uint64_t(i), 0);
+      if (!raw) continue;
+      const std::string name = raw;
+      const std::size_t slash = name.find('/');
+      if (name == kMainXml || (slash != std::string::npos && slash > 0 && name.substr(slash + 1) == kMainXml))
+        found.push_back(name);
+    }
+    if (found.empty()) throw InputError(path_, std::string("the X3P archive has no ") + kMainXml);
+    if (found.size() > 1) {
+      std::string list;
+      for (std::size_t i = 0; i < found.size() && i < 4; ++i) list += (i ? ", " : "") + found[i];
+      if (found.size() > 4) list += ", ...";
+      throw InputError(path_, "the X3P archive holds " + std::to_string(found.size()) + " main.xml files (" + list +
+                                  "): one measurement per archive");
+    }
+    folder_ = found.front().substr(0, found.front().size() - std::strlen(kMainXml));
+  }
+
   std::string path_;
   zip_t* za_ = nullptr;
+  std::string folder_;  // "" or "FOLDER/"
 };
 
 std::string lower(std::string s) {
@@ -103,7 +140,8 @@ std::string trimmed(const char* t) {
 
 struct XmlContext {
   const std::string& path;
-  [[noreturn]] void fail(const std::string& why) const { throw InputError(path, "main.xml: " + why); }
+  std::string xml_name = kMainXml;  // as the archive names it (FOLDER/main.xml)
+  [[noreturn]] void fail(const std::string& why) const { throw InputError(path, xml_name + ": " + why); }
   pugi::xml_node need(pugi::xml_node parent, const char* name) const {
     pugi::xml_node n = parent.child(name);
     if (!n) fail(std::string("no ") + parent.name() + "/" + name);
@@ -249,10 +287,9 @@ bool looks_like_zip(const std::string& path) {
 }
 
 X3pContents read_x3p(const std::string& path) {
-  const ZipReader zip(path);
-  if (!zip.has(kMainXml)) throw InputError(path, "the X3P archive has no main.xml");
+  const ZipReader zip(path);  // refuses an archive without exactly one main.xml
   const std::string xml = zip.read(kMainXml);
-  const XmlContext x{path};
+  const XmlContext x{path, zip.full(kMainXml)};
   pugi::xml_document doc;
   if (const pugi::xml_parse_result r = doc.load_buffer(xml.data(), xml.size()); !r)
     x.fail(std::string("not well-formed XML (") + r.description() + " at byte " + std::to_string(r.offset) + ")");

@@ -9,6 +9,8 @@
 #include "roads/mpd.hpp"
 #include "roads/profile_filters.hpp"
 #include "roads/reference_plates.hpp"
+#include "roads/surface_file.hpp"
+#include "tests/cli_fixture.hpp"
 
 namespace wr {
 namespace {
@@ -375,6 +377,152 @@ TEST(ExpectedMpd, ProfilePsdIntegratesToTheSurfaceVariance) {
   const double dq = p.q1_cut / n;
   for (int i = 0; i < n; ++i) s += profile_psd(p, (i + 0.5) * dq) * dq;
   EXPECT_NEAR(2 * s / h0sq, 1.0, 2e-3);
+}
+
+// ---- MPD per evaluation length (issue 54 bar 2; ISO 13473-1:2019 continuous records) ----
+
+// A record of twelve 100 mm segments (each the symmetric plateau segment, MSD = p (1 - 8/200))
+// and a 30 mm tail, in evaluation lengths of 0.5 m = 5 segments: [0, 0.5) with segments 1, 2
+// and 4 (of 0..4) spoilt by dropouts (2 of 5 valid: invalid, clause 7.10), [0.5, 1.0) with
+// segment 7 spoilt (4 of 5: valid), and [1.0, 1.2) holding the last two segments (shorter: listed,
+// not counted). Every number by hand.
+struct EvaluationRecord {
+  std::vector<double> h;
+  std::vector<unsigned char> drop;
+  std::vector<double> msd;  // of each segment, spoilt or not
+};
+EvaluationRecord evaluation_record() {
+  EvaluationRecord r;
+  const std::size_t seg = 200;
+  for (int j = 0; j < 12; ++j) {
+    const double p = 1e-3 * (1 + 0.25 * j);
+    const auto s = symmetric_segment(seg, 4, p, 20);
+    r.h.insert(r.h.end(), s.begin(), s.end());
+    r.msd.push_back(p * (1 - 8.0 / seg));
+  }
+  r.h.insert(r.h.end(), 60, 9e-3);  // the tail: no segment
+  r.drop.assign(r.h.size(), 0);
+  for (int j : {1, 2, 4, 7})
+    for (std::size_t i = 0; i < 30; ++i) r.drop[j * seg + 100 + i] = 1;  // 15 % of the segment: invalid
+  return r;
+}
+
+TEST(Mpd, PerEvaluationLengthByHand) {
+  const EvaluationRecord rec = evaluation_record();
+  MpdOptions opt;
+  opt.lowpass_wavelength = 0;
+  opt.spike_alpha = 0;
+  opt.evaluation_length = 0.5;
+  MpdAccumulator acc;
+  add_profile_segments(rec.h, rec.drop, 0.5e-3, opt, acc, 3);
+  const MpdResult r = summarize(acc, opt);
+  EXPECT_EQ(r.segments, 12u);
+  EXPECT_EQ(r.valid_segments, 8u);
+  ASSERT_EQ(r.evaluations.size(), 3u);
+  const double e0 = (rec.msd[0] + rec.msd[3]) / 2;
+  const double e1 = (rec.msd[5] + rec.msd[6] + rec.msd[8] + rec.msd[9]) / 4;
+  const double e2 = (rec.msd[10] + rec.msd[11]) / 2;
+  const struct {
+    double start, length, mpd;
+    std::size_t segments, valid_segments;
+    bool valid, complete;
+  } want[] = {{0.0, 0.5, e0, 5, 2, false, true}, {0.5, 0.5, e1, 5, 4, true, true}, {1.0, 0.2, e2, 2, 2, true, false}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const EvaluationMpd& e = r.evaluations[k];
+    EXPECT_EQ(e.profile, 3u);
+    EXPECT_NEAR(e.start, want[k].start, 1e-12) << k;
+    EXPECT_NEAR(e.length, want[k].length, 1e-12) << k;
+    EXPECT_NEAR(e.mpd, want[k].mpd, 1e-15) << k;
+    EXPECT_EQ(e.segments, want[k].segments) << k;
+    EXPECT_EQ(e.valid_segments, want[k].valid_segments) << k;
+    EXPECT_EQ(e.valid, want[k].valid) << k;
+    EXPECT_EQ(e.complete, want[k].complete) << k;
+  }
+  // Counted: the complete, valid evaluation lengths only (here the second).
+  EXPECT_EQ(r.evaluations_counted, 1u);
+  EXPECT_NEAR(r.evaluation_mean, e1, 1e-15);
+  EXPECT_NEAR(r.evaluation_min, e1, 1e-15);
+  EXPECT_NEAR(r.evaluation_max, e1, 1e-15);
+
+  // No evaluation length on a record shorter than one, and none when switched off.
+  MpdAccumulator shorter, off;
+  const std::size_t n = 4 * 200;
+  add_profile_segments(std::vector<double>(rec.h.begin(), rec.h.begin() + n),
+                       std::vector<unsigned char>(n, 0), 0.5e-3, opt, shorter);
+  EXPECT_TRUE(summarize(shorter, opt).evaluations.empty());
+  MpdOptions none = opt;
+  none.evaluation_length = 0;
+  add_profile_segments(rec.h, rec.drop, 0.5e-3, none, off);
+  EXPECT_TRUE(summarize(off, none).evaluations.empty());
+  EXPECT_EQ(summarize(off, none).valid_segments, 8u);
+}
+
+// A reference plate cut at the start shifts every evaluation length's start by the plate's length
+// (positions are along the record as measured).
+TEST(Mpd, EvaluationLengthsStartAfterACutPlate) {
+  const EvaluationRecord rec = evaluation_record();
+  std::vector<double> h(120, 25e-3);  // 60 mm of plate, 25 mm above the road
+  h.insert(h.end(), rec.h.begin(), rec.h.end());
+  MpdOptions opt;
+  opt.lowpass_wavelength = 0;
+  opt.spike_alpha = 0;
+  opt.evaluation_length = 0.5;
+  opt.cut_plates = true;
+  MpdAccumulator acc;
+  add_profile_segments(h, std::vector<unsigned char>(h.size(), 0), 0.5e-3, opt, acc);
+  const MpdResult r = summarize(acc, opt);
+  ASSERT_GT(r.plate_start, 0.0);
+  ASSERT_EQ(r.evaluations.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(r.evaluations[k].start, r.plate_start + 0.5 * double(k), 1e-12);
+}
+
+class MpdCli : public wr_test::Cli {};
+
+// Through `wetroad analyze`: the table in --json and --out, the summary on the terminal, and a
+// length that is not a whole number of segments (or negative) refused in one line.
+TEST_F(MpdCli, EvaluationLengthTableInEveryOutput) {
+  const EvaluationRecord rec = evaluation_record();
+  HeightMap m(rec.h.size(), 1, 0.5e-3, 0.5e-3, HeightMap::Kind::profile);
+  m.periodic = false;
+  m.h.assign(rec.h.begin(), rec.h.end());
+  write_surface_file(path("rec.h5"), m, std::nullopt, {{"command", "test"}});
+  // Spot method, no filters: the mean-plane removal is a line, which slope suppression removes.
+  const std::string base = "analyze " + path("rec.h5") + " --mpd-method spot --lowpass 0 --spike-alpha 0 --keep-plates";
+  const wr_test::CliRun r = run(base + " --evaluation-length 0.5 --json " + path("r.json") + " --out " + path("r.h5"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("per 0.5 m evaluation length"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(path("r.json")));
+  const auto& ev = j["mpd_evaluation"];
+  EXPECT_EQ(ev["length"].get<double>(), 0.5);
+  ASSERT_EQ(ev["table"].size(), 3u);  // no dropouts here: 5, 5 and 2 valid segments
+  EXPECT_EQ(ev["counted"].get<std::size_t>(), 2u);
+  const double e0 = (rec.msd[0] + rec.msd[1] + rec.msd[2] + rec.msd[3] + rec.msd[4]) / 5;
+  const double e1 = (rec.msd[5] + rec.msd[6] + rec.msd[7] + rec.msd[8] + rec.msd[9]) / 5;
+  EXPECT_NEAR(ev["table"][0]["mpd"].get<double>(), e0, 1e-12);
+  EXPECT_NEAR(ev["table"][1]["mpd"].get<double>(), e1, 1e-12);
+  EXPECT_NEAR(ev["mean"].get<double>(), (e0 + e1) / 2, 1e-12);
+  EXPECT_FALSE(ev["table"][2]["complete"].get<bool>());
+  {
+    const hid_t f = H5Fopen(path("r.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    const hid_t d = H5Dopen2(f, "/mpd_evaluation/mpd", H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    std::vector<double> mpd(3);
+    EXPECT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, mpd.data()), 0);
+    EXPECT_NEAR(mpd[0], e0, 1e-12);
+    EXPECT_NEAR(mpd[1], e1, 1e-12);
+    H5Dclose(d);
+    H5Fclose(f);
+  }
+  // The default (10 m) is longer than this 1.23 m record: an empty table.
+  ASSERT_EQ(run(base + " -q --json " + path("d.json")).code, 0);
+  EXPECT_TRUE(nlohmann::json::parse(slurp(path("d.json")))["mpd_evaluation"]["table"].empty());
+  for (const char* bad : {"0.25", "-1", "nan"}) {
+    const wr_test::CliRun b = run(base + " --evaluation-length " + bad);
+    EXPECT_EQ(b.code, 2) << bad << ": " << b.err;
+    EXPECT_NE(b.err.find("--evaluation-length"), std::string::npos) << b.err;
+    EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << b.err;
+  }
 }
 
 }  // namespace

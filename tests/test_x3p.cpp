@@ -26,12 +26,17 @@ using wr_test::Cli;
 using wr_test::CliRun;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A zip of the given entries (name -> bytes), deflated, as any archiver would make it.
+// A zip of the given entries (name -> bytes; a name ending in '/' a directory), deflated, as any
+// archiver would make it.
 void make_zip(const std::string& path, const std::map<std::string, std::string>& entries) {
   int err = 0;
   zip_t* za = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
   ASSERT_NE(za, nullptr);
   for (const auto& [name, bytes] : entries) {
+    if (name.ends_with('/')) {  // a directory entry
+      ASSERT_GE(zip_dir_add(za, name.c_str(), 0), 0);
+      continue;
+    }
     zip_source_t* s = zip_source_buffer(za, bytes.data(), bytes.size(), 0);
     ASSERT_GE(zip_file_add(za, name.c_str(), s, 0), 0);
   }
@@ -88,16 +93,19 @@ struct HandMade {
            "</Record3><Record4><ChecksumFile>md5checksum.hex</ChecksumFile></Record4></p:ISO5436_2>\n";
   }
 
-  void write(const std::string& path) const {
+  // folder: "" (the standard's layout) or "NAME/", every entry under it, as zipping a folder
+  // gives; the links inside main.xml stay relative to it.
+  std::map<std::string, std::string> entries(const std::string& folder = "") const {
     const std::string x = xml();
-    std::map<std::string, std::string> e{{"main.xml", x}};
+    std::map<std::string, std::string> e{{folder + "main.xml", x}};
     std::string md5 = wr::md5_hex(x);
     if (corrupt_main_checksum) md5[5] = md5[5] == 'a' ? 'b' : 'a';
-    if (main_checksum) e["md5checksum.hex"] = md5 + " *main.xml\n";
-    if (!data.empty()) e["bindata/data.bin"] = data;
-    if (!valid.empty()) e["bindata/valid.bin"] = valid;
-    make_zip(path, e);
+    if (main_checksum) e[folder + "md5checksum.hex"] = md5 + " *main.xml\n";
+    if (!data.empty()) e[folder + "bindata/data.bin"] = data;
+    if (!valid.empty()) e[folder + "bindata/valid.bin"] = valid;
+    return e;
   }
+  void write(const std::string& path, const std::string& folder = "") const { make_zip(path, entries(folder)); }
 };
 
 class X3p : public Cli {};
@@ -235,6 +243,58 @@ TEST_F(X3p, BadArchivesAreRefusedInOneLine) {
     bad.write(path(c.file));
     expect_bad_input(path(c.file), c.says);
   }
+}
+
+// Issue 54 class 14a: zipping a folder puts main.xml under it (FOLDER/main.xml, with directory
+// entries); such an archive reads exactly as the standard's flat layout, its links and checksum
+// file taken relative to main.xml's folder. Two main.xml are refused by name.
+TEST_F(X3p, MainXmlUnderATopFolder) {
+  HandMade f = valid_map();
+  f.valid = std::string("\xdf\x0f", 2);  // point 5 invalid: the valid-points link is followed too
+  f.write(path("flat.x3p"));
+  {
+    std::map<std::string, std::string> e = f.entries("scan 7/");
+    e["scan 7/"] = "";  // the directory entries an archiver writes (zero-length names ending in '/')
+    e["scan 7/bindata/"] = "";
+    make_zip(path("folder.x3p"), e);
+  }
+  const wr::X3pContents a = wr::read_x3p(path("flat.x3p")), b = wr::read_x3p(path("folder.x3p"));
+  EXPECT_TRUE(b.checksums_verified);
+  EXPECT_TRUE(b.warnings.empty());
+  EXPECT_EQ(b.invalid, 1u);
+  EXPECT_TRUE(std::isnan(b.map.h[5]));
+  ASSERT_EQ(a.map.h.size(), b.map.h.size());
+  for (std::size_t i = 0; i < a.map.h.size(); ++i)
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.map.h[i]), std::bit_cast<std::uint64_t>(b.map.h[i])) << i;
+  EXPECT_EQ(b.map.dx, a.map.dx);
+  EXPECT_EQ(b.map.dy, a.map.dy);
+  const CliRun r = run("analyze " + path("folder.x3p"));
+  EXPECT_EQ(r.code, 0) << r.err;
+
+  // A damaged file under the folder is named with its folder.
+  HandMade spoilt = f;
+  spoilt.corrupt_data_checksum = true;
+  make_zip(path("folder-sum.x3p"), spoilt.entries("scan 7/"));
+  expect_bad_input(path("folder-sum.x3p"), "scan 7/main.xml: bindata/data.bin checksum mismatch");
+  // The data file sits at the root, not beside main.xml: not looked for elsewhere.
+  {
+    std::map<std::string, std::string> e = f.entries("scan 7/");
+    e["bindata/data.bin"] = e["scan 7/bindata/data.bin"];
+    e.erase("scan 7/bindata/data.bin");
+    make_zip(path("folder-misplaced.x3p"), e);
+  }
+  expect_bad_input(path("folder-misplaced.x3p"), "no scan 7/bindata/data.bin");
+  // Two measurements in one archive: which to read is not guessed.
+  for (const auto& [file, second] : {std::pair<const char*, std::string>{"two-folders.x3p", "other/"},
+                                     std::pair<const char*, std::string>{"root-and-folder.x3p", ""}}) {
+    std::map<std::string, std::string> e = f.entries("scan 7/"), more = f.entries(second);
+    e.insert(more.begin(), more.end());
+    make_zip(path(file), e);
+    expect_bad_input(path(file), "holds 2 main.xml files");
+  }
+  // Deeper than one folder is not what zipping a folder gives: still "no main.xml".
+  make_zip(path("deep.x3p"), f.entries("a/b/"));
+  expect_bad_input(path("deep.x3p"), "no main.xml");
 }
 
 // Without a checksum file the data are read, with a warning that main.xml was not verified.
