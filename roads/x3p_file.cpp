@@ -28,6 +28,8 @@
 namespace wr {
 namespace {
 
+constexpr const char* kX3pNamespace = "http://www.opengps.eu/2008/ISO5436_2";
+
 constexpr const char* kMainXml = "main.xml";
 constexpr const char* kVendorFile = "wetroad.json";
 
@@ -297,6 +299,13 @@ X3pContents read_x3p(const std::string& path) {
   const std::string rname = root.name();
   if (rname != "ISO5436_2" && !(rname.size() > 10 && rname.ends_with(":ISO5436_2")))
     x.fail("root element <" + rname + "> is not ISO5436_2");
+  // The element is ISO 5436-2's only in the standard's namespace: the same name in another
+  // namespace is another format whose fields need not mean the same.
+  const std::string prefix = rname.size() > 10 ? rname.substr(0, rname.size() - 10) : "";
+  const std::string xmlns = prefix.empty() ? "xmlns" : "xmlns:" + prefix;
+  const std::string ns = root.attribute(xmlns.c_str()).as_string();
+  if (ns != kX3pNamespace)
+    x.fail("root element <" + rname + "> is in the namespace \"" + ns + "\", not ISO 5436-2's \"" + kX3pNamespace + "\"");
   X3pContents out;
   out.checksums_verified = verify_main_checksum(x, zip, root, xml, out.warnings);
 
@@ -378,7 +387,7 @@ std::string main_xml(const HeightMap& map, const std::string& command, const std
   decl.append_attribute("version") = "1.0";
   decl.append_attribute("encoding") = "UTF-8";
   pugi::xml_node root = doc.append_child("p:ISO5436_2");
-  root.append_attribute("xmlns:p") = "http://www.opengps.eu/2008/ISO5436_2";
+  root.append_attribute("xmlns:p") = kX3pNamespace;
   pugi::xml_node r1 = root.append_child("Record1");
   r1.append_child("Revision").text() = "ISO5436 - 2000";
   r1.append_child("FeatureType").text() = map.is_profile() ? "PRF" : "SUR";

@@ -56,6 +56,7 @@ std::string little_endian(const std::vector<T>& v) {
 
 struct HandMade {
   std::string feature = "SUR", type = "D", cx_inc = "2e-05", cy_inc = "3e-05", z_inc = "1", z_off = "0";
+  std::string ns = "http://www.opengps.eu/2008/ISO5436_2";
   std::size_t sx = 4, sy = 3;
   std::string data;                   // bindata/data.bin (empty: a DataList instead)
   std::vector<std::string> datums;    // DataList entries
@@ -82,7 +83,7 @@ struct HandMade {
       return std::string("<") + n + "><AxisType>" + at + "</AxisType><DataType>" + t + "</DataType><Increment>" + inc +
              "</Increment><Offset>" + off + "</Offset></" + n + ">";
     };
-    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">"
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<p:ISO5436_2 xmlns:p=\"" + ns + "\">"
            "<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>" + feature + "</FeatureType><Axes>" +
            axis("CX", "I", "D", cx_inc, "0") + axis("CY", "I", "D", cy_inc, "0") + axis("CZ", "A", type, z_inc, z_off) +
            "</Axes></Record1><Record2><Date>2026-12-06T00:00:00Z</Date><Instrument><Manufacturer>hand</Manufacturer>"
@@ -236,6 +237,8 @@ TEST_F(X3p, BadArchivesAreRefusedInOneLine) {
       {"pcl.x3p", [](HandMade& f) { f.feature = "PCL"; }, "feature type PCL"},
       {"size.x3p", [](HandMade& f) { f.sx = 5; }, "need 120"},  // 12 points held, 15 declared
       {"type.x3p", [](HandMade& f) { f.type = "Q"; }, "data type 'Q'"},
+      // issue 54: ISO5436_2 in a foreign namespace is another format
+      {"ns.x3p", [](HandMade& f) { f.ns = "http://example.com/not-iso"; }, "not ISO 5436-2's"},
   };
   for (const auto& c : cases) {
     HandMade bad = valid_map();
