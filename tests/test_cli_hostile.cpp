@@ -340,6 +340,14 @@ TEST_F(Hostile, Class11_InterruptedRunsLeaveNoStagingFiles) {
   ASSERT_EQ(run("fill " + path("a.h5") + " --limit -q -o " + path("w.h5")).code, 0);
   EXPECT_FALSE(fs::exists(path(stale)));
   EXPECT_TRUE(fs::exists(path(live))) << "a live process's staging file was removed";
+  // The same inside a sweep's checkpoint folder, whose run records are staged beside each other.
+  const std::string sweep = "sweep-coverage --surface " + path("a.h5") + " --model hysteresis --coverages 0 -q --out " +
+                            path("r.h5");
+  ASSERT_EQ(run(sweep).code, 0);
+  const std::string record = path("r.h5.runs/.run-0001.json.tmp-" + std::to_string(dead) + "-3");
+  std::ofstream(record) << "{";
+  ASSERT_EQ(run(sweep + " --resume").code, 0);
+  EXPECT_FALSE(fs::exists(record));
 }
 
 // ---- class 13: messages that say what is wrong ----------------------------------------------------

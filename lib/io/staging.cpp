@@ -94,22 +94,39 @@ void install_interrupt_cleanup() {
   std::thread(wait_and_clean, set).detach();
 }
 
-std::size_t remove_stale_staging(const std::string& final_path) {
-  const fs::path p = fs::path(final_path).lexically_normal();
-  const std::string prefix = "." + p.filename().string() + ".tmp-";
-  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+namespace {
+
+// Removes the entries of `dir` named "." + something + ".tmp-PID-..." whose PID is dead and whose
+// something satisfies `wanted`; returns how many.
+template <class Wanted>
+std::size_t remove_dead_staging(const fs::path& dir, Wanted wanted) {
   std::error_code ec;
   std::size_t removed = 0;
   fs::directory_iterator it(dir, ec), end;
   for (; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    const long pid = leading_pid(name.substr(prefix.size()));
+    const std::size_t tmp = name.rfind(".tmp-");
+    if (name.empty() || name[0] != '.' || tmp == std::string::npos || tmp < 1) continue;
+    if (!wanted(name.substr(1, tmp - 1))) continue;
+    const long pid = leading_pid(name.substr(tmp + 5));
     if (pid <= 0 || pid == long(::getpid()) || process_alive(pid)) continue;
     std::error_code rec;
     removed += fs::remove_all(it->path(), rec) > 0;
   }
   return removed;
+}
+
+}  // namespace
+
+std::size_t remove_stale_staging(const std::string& final_path) {
+  const fs::path p = fs::path(final_path).lexically_normal();
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  const std::string target = p.filename().string();
+  return remove_dead_staging(dir, [&](const std::string& of) { return of == target; });
+}
+
+std::size_t remove_stale_staging_in(const std::string& dir) {
+  return remove_dead_staging(fs::path(dir), [](const std::string&) { return true; });
 }
 
 }  // namespace wr

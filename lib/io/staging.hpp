@@ -23,5 +23,8 @@ void track_staging(const std::string& path);
 void untrack_staging(const std::string& path);
 void install_interrupt_cleanup();
 std::size_t remove_stale_staging(const std::string& final_path);
+// The same for every staging file in `dir` (a sweep's checkpoint folder, whose run records are
+// written beside each other).
+std::size_t remove_stale_staging_in(const std::string& dir);
 
 }  // namespace wr

@@ -1,7 +1,5 @@
 #include "lib/sweep/sweep_engine.hpp"
 
-#include "roads/synthesize.hpp"
-
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -19,6 +17,8 @@
 #include "lib/core/content_hash.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/staging.hpp"
+#include "roads/synthesize.hpp"
 #include "wetroad/version.hpp"
 
 namespace wr {
@@ -136,6 +136,7 @@ void SweepCheckpoint::start(const nlohmann::json& spec, MPI_Comm comm) {
       if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0)
         throw InputError(dir_, "another wetroad process is running this sweep (its checkpoint is locked); wait for "
                                "it, or stop it and --resume");
+      remove_stale_staging_in(dir_);  // records of an earlier process killed mid-write
       write_text_atomically(dir_ + "/sweep.json",
                             nlohmann::json({{"spec", spec}, {"version", kVersion}, {"key", key_}}).dump(2) + "\n");
     } catch (const InputError& e) {
