@@ -294,6 +294,18 @@ TEST_F(Hostile, Class10And12_EveryBadValueIsOneLineAndExit2) {
       {"fill " + a + " --limit -o \"\"", "--output"},
   };
   for (const auto& [args, needle] : cases) expect_one_line(args, needle);
+  // A sweep record whose numbers were nulled after it was written: one line naming the file.
+  ASSERT_EQ(run("sweep-coverage --surface " + a + " --model hysteresis --coverages 0 0.2 -q --out " + path("s.h5")).code, 0);
+  {
+    const wr::Hdf5Reader in(path("s.h5"));
+    nlohmann::json sweep = nlohmann::json::parse(in.read_text("/sweep"));
+    for (auto& row : sweep["table"]) row["failed"] = nullptr, row["mu_peak"]["n"] = nullptr;
+    wr::Hdf5Writer out(path("nulls.h5"));
+    out.write_attr("/", "kind", *in.attr_string("/", "kind"));
+    out.write_text("/sweep", sweep.dump());
+    out.commit();
+  }
+  expect_one_line("report --sweep " + path("nulls.h5") + " -o " + path("r.html"), "nulls.h5: a field is missing");
   for (double periodic : {0.5, 2.0}) {
     make_h5("p.h5", "height", {16, 16}, 1e-3);
     set_attr("p.h5", "height", "periodic", periodic);
