@@ -165,6 +165,8 @@ std::vector<CloudPoint> read_point_cloud_text(const std::string& path, double un
   TextRecords rec(in);
   while (rec.next()) {
     const std::vector<std::string>& fields = rec.fields();
+    if (fields.empty())
+      throw InputError(path, "line " + std::to_string(rec.line()) + ", column 1: separators but no value (a point is x y z)");
     if (++records == 1 && is_column_names(fields)) continue;
     if (fields.size() < 3)
       throw InputError(path, rec.where(fields.size() - 1) + ": the line ends after " + std::to_string(fields.size()) +

@@ -142,6 +142,8 @@ LoadedSurface load_text(const std::string& path, const TextGridOptions& opt) {
   TextRecords rec(in);
   while (rec.next()) {
     const std::vector<std::string>& fields = rec.fields();
+    if (fields.empty())
+      throw InputError(path, "line " + std::to_string(rec.line()) + ", column 1: separators but no value (NaN marks a dropout)");
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const std::optional<double> v = parse_number(fields[k]);
       if (!v) throw InputError(path, rec.where(k) + ": '" + shown_token(fields[k]) + "' is not a number");

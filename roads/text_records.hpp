@@ -68,6 +68,8 @@ class TextRecords {
     return false;
   }
 
+  // Empty for a line of separators only (",,,"): not blank, and no values either; the caller
+  // refuses it (where() needs a field).
   const std::vector<std::string>& fields() const { return fields_; }
   std::size_t line() const { return lineno_; }  // 1-based number of the current record's line
   // "line L, column C (field F)": C counts characters (UTF-8 code points) from 1, F fields from 1.

@@ -139,6 +139,12 @@ TEST(Import, RaggedRowsAreNamedByLineAndColumn) {
   const std::string e2 = refusal(shorter, opt);
   std::filesystem::remove(shorter);
   EXPECT_NE(e2.find("line 3, column 5 (field 2): the line ends after 2 values"), std::string::npos) << e2;
+  // Found by fuzz_text_grid: a line of separators only was a record without fields, whose
+  // "last field" was index -1 (undefined behaviour). It is refused by line.
+  const std::string commas = write_bytes("commas.txt", "1,2\n,\n3,4\n");
+  const std::string e3 = refusal(commas, opt);
+  std::filesystem::remove(commas);
+  EXPECT_NE(e3.find("line 2, column 1: separators but no value"), std::string::npos) << e3;
 }
 
 TEST(Import, Hdf5RoundTripKeepsDataAndSpacing) {

@@ -184,6 +184,8 @@ TEST_F(PointCloudText, AFirstLineThatIsNeitherNumbersNorNamesIsRefused) {
   EXPECT_NE(e.find("line 1, column 1 (field 1)"), std::string::npos) << e;
   e = refusal("x y z\nX Y Z\n0 0 0\n");  // only the first line may be names
   EXPECT_NE(e.find("line 2, column 1 (field 1): 'X' is not a number"), std::string::npos) << e;
+  e = refusal("0 0 0\n ;, \n1 0 0\n0 1 1\n");  // found by fuzz_point_cloud: index -1 of no fields
+  EXPECT_NE(e.find("line 2, column 1: separators but no value"), std::string::npos) << e;
   e = refusal("0 0 0\n1 0\n");
   EXPECT_NE(e.find("line 2, column 3 (field 2): the line ends after 2 values"), std::string::npos) << e;
 }
