@@ -38,7 +38,8 @@ check-asan: deps
 # tests/fuzz/seeds/; a crash, hang (> 10 s), sanitizer report or uncaught non-input error fails it.
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 120
-FUZZ_TARGETS = fuzz_height_map fuzz_text_grid fuzz_x3p fuzz_point_cloud fuzz_measured_csv fuzz_scene_json fuzz_checkpoint
+FUZZ_TARGETS = fuzz_height_map fuzz_text_grid fuzz_x3p fuzz_point_cloud fuzz_measured_csv fuzz_compound_json \
+  fuzz_scene_json fuzz_checkpoint
 fuzz: deps
 	@scripts/install-deps.sh --fuzz
 	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWETROAD_FUZZ=ON \

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lib/core/utf8.hpp"
+
 namespace wr::html {
 namespace {
 
@@ -28,12 +30,26 @@ std::string figure(const std::string& svg_file, const std::string& caption) {
 
 std::string escape(const std::string& s) {
   std::string o;
-  for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else if (c == '"') o += "&quot;";
-    else o += c;
+  o.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    char32_t cp = 0;
+    const std::size_t n = utf8_length_at(s, i, &cp);
+    if (n == 0) {  // not UTF-8 (latin-1 from an old file): the page is UTF-8, so U+FFFD per byte
+      o += "&#xFFFD;";
+      ++i;
+      continue;
+    }
+    if (cp == '<') o += "&lt;";
+    else if (cp == '>') o += "&gt;";
+    else if (cp == '&') o += "&amp;";
+    else if (cp == '"') o += "&quot;";
+    else if (cp == '\'') o += "&#39;";
+    else if (cp == '\t' || cp == '\n') o += static_cast<char>(cp);
+    // NUL and the other controls have no character reference a browser shows (&#0; and C1
+    // references are parse errors): the replacement character marks where one was.
+    else if (is_control(cp)) o += "&#xFFFD;";
+    else o.append(s, i, n);
+    i += n;
   }
   return o;
 }

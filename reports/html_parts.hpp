@@ -5,7 +5,9 @@
 
 namespace wr::html {
 
-std::string escape(const std::string& s);  // & < > " as entities
+// Text as HTML content or attribute value: & < > " ' as entities; controls other than tab and
+// newline, and bytes that are not UTF-8, as U+FFFD (the page is UTF-8 and must stay so).
+std::string escape(const std::string& s);
 // `v` printed with the printf format `f` (one conversion); an en dash when not finite.
 std::string fmt(double v, const char* f = "%.4g");
 // A <figure> with the SVG chart in `svg_file` inlined (its XML prolog dropped) and a caption.

@@ -33,19 +33,6 @@ constexpr double kSkidSpeed = 64.0;  // km/h: SN40R is measured at 40 mph
 
 double num(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : kNaN; }
 
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> out(1);
-  for (char c : line) {
-    if (c == ',') out.emplace_back();
-    else if (c != '\r') out.back() += c;
-  }
-  for (auto& s : out) {
-    const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
-    s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
-  }
-  return out;
-}
-
 std::string validity_section(const std::string& file, const nlohmann::json& sweep) {
   std::ostringstream o;
   int invalid = 0;
@@ -346,47 +333,6 @@ const char* kStyle =
     ".flag{color:#a00;font-weight:bold}.ok{color:#060}";
 
 }  // namespace
-
-std::vector<MeasuredSkid> read_measured_skid_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open the measured skid-number CSV");
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(path, "empty file (expected the header site,mpd_mm,sn40r[,speed_kmh])");
-  const auto head = split_csv_line(line);
-  if (head.size() < 3 || head[0] != "site" || head[1] != "mpd_mm" || head[2] != "sn40r" ||
-      (head.size() > 3 && head[3] != "speed_kmh") || head.size() > 4)
-    throw InputError(path, "line 1: the header must be site,mpd_mm,sn40r[,speed_kmh]");
-  std::vector<MeasuredSkid> out;
-  int n = 1;
-  while (std::getline(in, line)) {
-    ++n;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const auto f = split_csv_line(line);
-    if (f.size() != head.size())
-      throw InputError(path, "line " + std::to_string(n) + ": " + std::to_string(head.size()) + " fields expected");
-    auto value = [&](const std::string& s, const char* what, double lo, double hi) {
-      std::size_t used = 0;
-      double v = kNaN;
-      try {
-        v = std::stod(s, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != s.size() || !(v >= lo && v <= hi))
-        throw InputError(path, "line " + std::to_string(n) + ": " + what + " '" + s + "' is not a number in [" +
-                                   fmt(lo, "%g") + ", " + fmt(hi, "%g") + "]");
-      return v;
-    };
-    MeasuredSkid m;
-    m.site = f[0];
-    m.mpd_mm = value(f[1], "mpd_mm", 0, 10);
-    m.sn40r = value(f[2], "sn40r", 0, 150);
-    if (f.size() > 3 && !f[3].empty()) m.speed_kmh = value(f[3], "speed_kmh", 1, 300);
-    out.push_back(m);
-  }
-  if (out.empty()) throw InputError(path, "no data rows");
-  return out;
-}
 
 PeakEstimate peak_position(const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = x.size();

@@ -20,17 +20,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "reports/measured_csv.hpp"
+
 namespace wr {
-
-struct MeasuredSkid {
-  std::string site;
-  double mpd_mm = 0, sn40r = 0;
-  std::optional<double> speed_kmh;  // test speed (default 64 km/h = 40 mph)
-};
-
-// CSV with the header `site,mpd_mm,sn40r[,speed_kmh]`. Throws InputError(path, "line N: ...")
-// for a missing column, a non-numeric or out-of-range value.
-std::vector<MeasuredSkid> read_measured_skid_csv(const std::string& path);
 
 struct IfiConstants {
   double a = 0, b = 0, c = 0;  // device calibration constants (user parameters)

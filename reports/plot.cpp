@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "lib/core/utf8.hpp"
 #include "lib/io/atomic_output.hpp"
 
 namespace wr {
@@ -21,6 +22,23 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+// A title or label as a gnuplot literal. A line break would end the command (and let a file name
+// in a label write gnuplot commands), and the SVG is inlined into a UTF-8 page: controls become
+// blanks and bytes that are not UTF-8 U+FFFD (gnuplot escapes & < > itself).
+std::string quoted_text(const std::string& s) {
+  std::string t = "'";
+  for (std::size_t i = 0; i < s.size();) {
+    char32_t cp = 0;
+    const std::size_t n = utf8_length_at(s, i, &cp);
+    if (n == 0) t += "\xEF\xBF\xBD";
+    else if (cp == '\'') t += "''";
+    else if (is_control(cp)) t += ' ';
+    else t.append(s, i, n);
+    i += n == 0 ? 1 : n;
+  }
+  return t + "'";
+}
+
 }  // namespace
 
 void write_svg_plot(const std::string& path, const PlotSpec& spec) {
@@ -29,8 +47,8 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
   const std::string tmp = temporary_sibling(path, ".svg");
   g << "set terminal svg size 800,560 dynamic enhanced font 'sans,12' background rgb 'white'\n";
   g << "set output " << quoted(tmp) << "\n";
-  g << "set title " << quoted(spec.title) << " noenhanced\n";
-  g << "set xlabel " << quoted(spec.xlabel) << " noenhanced\nset ylabel " << quoted(spec.ylabel) << " noenhanced\n";
+  g << "set title " << quoted_text(spec.title) << " noenhanced\n";
+  g << "set xlabel " << quoted_text(spec.xlabel) << " noenhanced\nset ylabel " << quoted_text(spec.ylabel) << " noenhanced\n";
   g << "set grid\nset key top left noenhanced opaque box\n";
   if (spec.logx) g << "set logscale x\nset format x '10^{%L}'\n";
   if (spec.logy) g << "set logscale y\nset format y '10^{%L}'\n";
@@ -64,7 +82,7 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
       const PlotSeries& ps = spec.series[drawn[i]];
       g << (i ? ", " : "") << "$d" << drawn[i]
         << (ps.yerr.empty() ? " using 1:2 with " + ps.style : std::string(" using 1:2:3 with yerrorlines"))
-        << " lw 2 title " << quoted(ps.label);
+        << " lw 2 title " << quoted_text(ps.label);
     }
   }
   g << "\nunset output\n";

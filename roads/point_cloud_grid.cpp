@@ -1,11 +1,13 @@
 #include "roads/point_cloud_grid.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -55,6 +57,25 @@ double interpolate_on(const Delaunay::Face_handle& f, const Point2& p) {
   const double total = area2(a, b, c);
   const double la = area2(p, b, c) / total, lb = area2(a, p, c) / total, lc = 1.0 - la - lb;
   return la * f->vertex(0)->info() + lb * f->vertex(1)->info() + lc * f->vertex(2)->info();
+}
+
+// A header line: at least x y z, every field a name (a letter or '_' first, then letters,
+// digits and unit punctuation such as z_mm, Z(um), height[m]; bytes of UTF-8 letters allowed)
+// and none a number (strtod also reads "nan", "inf"). CloudCompare writes its header as "//X,Y,Z".
+bool is_column_names(const std::vector<std::string>& fields) {
+  if (fields.size() < 3) return false;
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    std::string f = fields[k];
+    if (k == 0 && f.rfind("//", 0) == 0) f.erase(0, 2);
+    if (f.empty() || parse_number(f)) return false;
+    const auto first = static_cast<unsigned char>(f[0]);
+    if (!(std::isalpha(first) || first == '_' || first >= 0x80)) return false;
+    for (const char ch : f) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (!(std::isalnum(c) || c >= 0x80 || std::string_view("_-.()[]/%").find(ch) != std::string_view::npos)) return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -140,23 +161,26 @@ std::vector<CloudPoint> read_point_cloud_text(const std::string& path, double un
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open");
   std::vector<CloudPoint> pts;
-  std::size_t lineno = 0, records = 0;
-  std::vector<std::string> fields;
-  while (next_text_record(in, fields, lineno)) {
-    ++records;
+  std::size_t records = 0;
+  TextRecords rec(in);
+  while (rec.next()) {
+    const std::vector<std::string>& fields = rec.fields();
+    if (fields.empty())
+      throw InputError(path, "line " + std::to_string(rec.line()) + ", column 1: separators but no value (a point is x y z)");
+    if (++records == 1 && is_column_names(fields)) continue;
+    if (fields.size() < 3)
+      throw InputError(path, rec.where(fields.size() - 1) + ": the line ends after " + std::to_string(fields.size()) +
+                                 " values; a point cloud needs x y z on every line");
     double v[3];
-    std::size_t n = 0;
-    for (; n < 3 && n < fields.size(); ++n) {
+    for (std::size_t n = 0; n < 3; ++n) {
       const std::optional<double> x = parse_number(fields[n]);
-      if (!x) break;
+      // A first line that is neither numbers nor names (a typo such as 2.O, a stray byte) is
+      // refused like any other: skipping it as a header would lose a point without a word.
+      if (!x)
+        throw InputError(path, rec.where(n) + ": '" + shown_token(fields[n]) + "' is not a number" +
+                                   (records == 1 ? " (a header line must hold column names only, such as x y z)" : ""));
       v[n] = *x;
     }
-    const bool numeric = n == std::min<std::size_t>(3, fields.size());
-    if (!numeric && records == 1) continue;  // a line of column names
-    if (!numeric) throw InputError(path, "line " + std::to_string(lineno) + ": '" + fields[n] + "' is not a number");
-    if (n < 3)
-      throw InputError(path, "line " + std::to_string(lineno) + " has " + std::to_string(n) +
-                                 " values; a point cloud needs x y z on every line");
     pts.push_back({v[0] * unit_scale, v[1] * unit_scale, v[2] * unit_scale});
   }
   if (pts.empty()) throw InputError(path, "no points found (empty file?)");

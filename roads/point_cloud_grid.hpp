@@ -62,8 +62,9 @@ GriddedCloud grid_point_cloud(const std::vector<CloudPoint>& points, const Point
                               const std::string& source);
 
 // Reads "x y z" per line (whitespace, comma or semicolon separated; '#' comments; one header
-// line of names allowed before the first point; further columns ignored) and scales all three
-// coordinates by unit_scale (m per unit). InputError naming the file and line for anything else.
+// line of column names, and nothing else that is not a number, allowed before the first point;
+// further columns ignored; a UTF-8 BOM skipped; LF, CRLF or CR line ends) and scales all three
+// coordinates by unit_scale (m per unit). InputError naming the file, line and column otherwise.
 std::vector<CloudPoint> read_point_cloud_text(const std::string& path, double unit_scale);
 
 }  // namespace wr

@@ -149,19 +149,25 @@ LoadedSurface load_text(const std::string& path, const TextGridOptions& opt) {
   const auto file_bytes = std::filesystem::file_size(path);
   require_memory(file_bytes / 2 + 1, sizeof(double), kAnalysisCopies, path, "reading this text grid");
   std::vector<double> values;
-  std::size_t cols = 0, rows = 0, lineno = 0;
-  std::vector<std::string> fields;
-  while (next_text_record(in, fields, lineno)) {
-    for (const std::string& tok : fields) {
-      const std::optional<double> v = parse_number(tok);
-      if (!v) throw InputError(path, "line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
+  std::size_t cols = 0, rows = 0;
+  TextRecords rec(in);
+  while (rec.next()) {
+    const std::vector<std::string>& fields = rec.fields();
+    if (fields.empty())
+      throw InputError(path, "line " + std::to_string(rec.line()) + ", column 1: separators but no value (NaN marks a dropout)");
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      const std::optional<double> v = parse_number(fields[k]);
+      if (!v) throw InputError(path, rec.where(k) + ": '" + shown_token(fields[k]) + "' is not a number");
       values.push_back(*v);
     }
     if (rows == 0)
       cols = fields.size();
-    else if (fields.size() != cols)
-      throw InputError(path, "line " + std::to_string(lineno) + " has " + std::to_string(fields.size()) +
-                                 " values, the first row has " + std::to_string(cols));
+    else if (fields.size() > cols)
+      throw InputError(path, rec.where(cols) + ": value " + std::to_string(cols + 1) + " of a line of " +
+                                 std::to_string(fields.size()) + "; the first row has " + std::to_string(cols));
+    else if (fields.size() < cols)
+      throw InputError(path, rec.where(fields.size() - 1) + ": the line ends after " + std::to_string(fields.size()) +
+                                 " values; the first row has " + std::to_string(cols));
     ++rows;
   }
   if (rows == 0) throw InputError(path, "no numbers found (empty file?)");

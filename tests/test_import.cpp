@@ -60,6 +60,93 @@ TEST(Import, RaggedTextIsRefusedNamingTheLine) {
   std::filesystem::remove(path);
 }
 
+// Class 4 of issue 54: a text reader reads exactly what is there or refuses naming the line and
+// column. Each case below was read wrong with exit 0 before.
+std::string write_bytes(const std::string& name, const std::string& bytes) {
+  const std::string path = temp_path(name);
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+std::string refusal(const std::string& path, const TextGridOptions& opt) {
+  try {
+    load_surface(path, opt);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(read without an error)";
+}
+
+TEST(Import, NulByteInsideANumberIsRefusedNamingLineAndColumn) {
+  // "4\0" "5": strtod on c_str() read 4 and dropped the rest of the token.
+  const std::string path = write_bytes("nul.txt", std::string("1 2\n3 4\0" "5\n", 11));
+  TextGridOptions opt;
+  opt.dx = 1e-4;
+  const std::string e = refusal(path, opt);
+  std::filesystem::remove(path);
+  EXPECT_NE(e.find("line 2, column 3 (field 2)"), std::string::npos) << e;
+  EXPECT_NE(e.find("'4\\x005' is not a number"), std::string::npos) << e;  // the NUL shown, on one line
+}
+
+TEST(Import, EveryLineEndCountsOnceOldMacCrIncluded) {
+  TextGridOptions opt;
+  opt.dx = 1e-4;
+  // CR only (old Mac OS) was one line: a 1 x 9 profile. CRLF, LF and CR mixed in one file too.
+  for (const std::string& text : {std::string("1 2 3\r4 5 6\r7 8 9\r"), std::string("1 2 3\r\n4 5 6\r7 8 9\n"),
+                                  std::string("# mm\r\r\n1 2 3\r\n4 5 6\r\n7 8 9")}) {
+    const std::string path = write_bytes("cr.txt", text);
+    const LoadedSurface s = load_surface(path, opt);
+    std::filesystem::remove(path);
+    EXPECT_EQ(s.map.kind, HeightMap::Kind::map);
+    EXPECT_EQ(s.map.nx, 3u);
+    EXPECT_EQ(s.map.ny, 3u);
+  }
+  // Lines are counted with every end: the bad value on the fourth line (CR, CR LF, CR) is named there.
+  const std::string path = write_bytes("cr-bad.txt", "1 2\r\r\n3 4\r5 x\r");
+  const std::string e = refusal(path, opt);
+  std::filesystem::remove(path);
+  EXPECT_NE(e.find("line 4, column 3 (field 2): 'x' is not a number"), std::string::npos) << e;
+}
+
+TEST(Import, Utf8ByteOrderMarkIsSkipped) {
+  // A 3 x 3 grid, 9 at the centre and 0 around it; with a BOM its first value was "\xEF\xBB\xBF0".
+  const std::string path = write_bytes("bom.csv", "\xEF\xBB\xBF" "0,0,0\n0,9,0\n0,0,0\n");
+  TextGridOptions opt;
+  opt.dx = 1e-4;
+  opt.unit_scale = 1.0;
+  const LoadedSurface s = load_surface(path, opt);
+  std::filesystem::remove(path);
+  ASSERT_EQ(s.map.nx, 3u);
+  ASSERT_EQ(s.map.ny, 3u);
+  EXPECT_NEAR(s.offset, 1.0, 1e-12);  // the mean plane: no tilt, the mean 1
+  EXPECT_NEAR(s.map(1, 1), 8.0, 1e-12);
+  EXPECT_NEAR(s.map(0, 0), -1.0, 1e-12);
+  // A BOM anywhere else is not a line end or a separator: refused where it stands.
+  const std::string mid = write_bytes("bom-mid.csv", "0,0,0\n0,\xEF\xBB\xBF" "9,0\n");
+  const std::string e = refusal(mid, opt);
+  std::filesystem::remove(mid);
+  EXPECT_NE(e.find("line 2, column 3 (field 2)"), std::string::npos) << e;
+}
+
+TEST(Import, RaggedRowsAreNamedByLineAndColumn) {
+  TextGridOptions opt;
+  opt.dx = 1e-4;
+  const std::string longer = write_bytes("long.txt", "1 2\n3 4 5\n");
+  const std::string e1 = refusal(longer, opt);
+  std::filesystem::remove(longer);
+  EXPECT_NE(e1.find("line 2, column 5 (field 3)"), std::string::npos) << e1;
+  const std::string shorter = write_bytes("short.txt", "1 2 3\n\n  4;5\n");
+  const std::string e2 = refusal(shorter, opt);
+  std::filesystem::remove(shorter);
+  EXPECT_NE(e2.find("line 3, column 5 (field 2): the line ends after 2 values"), std::string::npos) << e2;
+  // Found by fuzz_text_grid: a line of separators only was a record without fields, whose
+  // "last field" was index -1 (undefined behaviour). It is refused by line.
+  const std::string commas = write_bytes("commas.txt", "1,2\n,\n3,4\n");
+  const std::string e3 = refusal(commas, opt);
+  std::filesystem::remove(commas);
+  EXPECT_NE(e3.find("line 2, column 1: separators but no value"), std::string::npos) << e3;
+}
+
 TEST(Import, Hdf5RoundTripKeepsDataAndSpacing) {
   HeightMap m(5, 3, 1e-4, 2e-4);
   m.periodic = true;

@@ -144,6 +144,70 @@ TEST(PointCloud, RefusesWhatIsNoSurface) {
   EXPECT_THROW(wr::grid_point_cloud({{0, 0, 0}, {1e98, 0, 0}, {0, 1, 0}}, opt, "f"), wr::InputError);  // found by the fuzzer
 }
 
+// Class 4 of issue 54: the first line was dropped as a header whenever it failed to parse (a BOM
+// before the first number, a typo), losing a point without a word. Now a header is only a line of
+// column names; anything else unreadable is refused with its line and column.
+class PointCloudText : public wr_test::ScratchTest {
+ protected:
+  PointCloudText() : ScratchTest("wetroad-cloud-") {}
+  std::string file(const std::string& bytes) const {
+    std::ofstream(path("c.xyz"), std::ios::binary) << bytes;
+    return path("c.xyz");
+  }
+  std::string refusal(const std::string& bytes) const {
+    try {
+      wr::read_point_cloud_text(file(bytes), 1.0);
+    } catch (const wr::InputError& e) {
+      return e.what();
+    }
+    return "(read without an error)";
+  }
+};
+
+TEST_F(PointCloudText, ByteOrderMarkIsSkippedNotTakenForAHeader) {
+  const std::vector<CloudPoint> p = wr::read_point_cloud_text(file("\xEF\xBB\xBF" "0.5 0 0\n1 0 0\n0 1 1\n"), 1.0);
+  ASSERT_EQ(p.size(), 3u);  // was 2: the first point went as a "header"
+  EXPECT_EQ(p[0].x, 0.5);
+  const std::vector<CloudPoint> h = wr::read_point_cloud_text(file("\xEF\xBB\xBF" "x,y,z\r\n0 0 0\r\n1 0 0\r\n0 1 1\r\n"), 1.0);
+  EXPECT_EQ(h.size(), 3u);
+}
+
+TEST_F(PointCloudText, AFirstLineThatIsNeitherNumbersNorNamesIsRefused) {
+  std::string e = refusal("1.0 2.O 3\n1 0 0\n0 1 1\n2 2 2\n");
+  EXPECT_NE(e.find("line 1, column 5 (field 2): '2.O' is not a number"), std::string::npos) << e;
+  EXPECT_NE(e.find("column names only"), std::string::npos) << e;
+  e = refusal("x y 3\n0 0 0\n1 0 0\n0 1 1\n");  // a number among the names
+  EXPECT_NE(e.find("line 1, column 1 (field 1): 'x'"), std::string::npos) << e;
+  e = refusal("points: 3\n0 0 0\n1 0 0\n0 1 1\n");
+  EXPECT_NE(e.find("line 1"), std::string::npos) << e;
+  e = refusal("\xFF\xFE" "0 0 0\n1 0 0\n0 1 1\n");  // UTF-16's BOM: not a name either
+  EXPECT_NE(e.find("line 1, column 1 (field 1)"), std::string::npos) << e;
+  e = refusal("x y z\nX Y Z\n0 0 0\n");  // only the first line may be names
+  EXPECT_NE(e.find("line 2, column 1 (field 1): 'X' is not a number"), std::string::npos) << e;
+  e = refusal("0 0 0\n ;, \n1 0 0\n0 1 1\n");  // found by fuzz_point_cloud: index -1 of no fields
+  EXPECT_NE(e.find("line 2, column 1: separators but no value"), std::string::npos) << e;
+  e = refusal("0 0 0\n1 0\n");
+  EXPECT_NE(e.find("line 2, column 3 (field 2): the line ends after 2 values"), std::string::npos) << e;
+}
+
+TEST_F(PointCloudText, HeadersOfColumnNamesAreSkipped) {
+  for (const std::string& head : {"x y z", "X(mm);Y(mm);Z(mm);intensity", "//X,Y,Z,R,G,B", "x_m\ty_m\theight[m]",
+                                  "x y z_\xC2\xB5m"}) {
+    const std::vector<CloudPoint> p = wr::read_point_cloud_text(file(head + std::string("\n0 0 0\n1 0 0\n0 1 1\n")), 1.0);
+    EXPECT_EQ(p.size(), 3u) << head;
+  }
+}
+
+TEST_F(PointCloudText, OldMacLineEndsAreLineEnds) {
+  // CR only: one line before, whose 9 values were read as one point (x y z, the rest ignored).
+  const std::vector<CloudPoint> p = wr::read_point_cloud_text(file("0 0 0\r1 0 0\r0 1 1\r"), 1.0);
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[2].z, 1.0);
+  const char nul[] = "0 0 0\r1 0 0\r0 1 \0" "1\r";  // a NUL inside the third z
+  const std::string e = refusal(std::string(nul, sizeof nul - 1));
+  EXPECT_NE(e.find("line 3, column 5 (field 3): '\\x001'"), std::string::npos) << e;
+}
+
 class PointCloudCli : public wr_test::Cli {};
 
 // The text reader (a header line, commas, extra columns, millimetres) through the CLI, which says

@@ -173,11 +173,20 @@ TEST(Report, EveryTableNumberTracesToTheHdf5) {
   ReportInput in;
   in.sweeps.emplace_back(h5, read_sweep_hdf5(h5, coverage_layout()));
   EXPECT_EQ(in.sweeps[0].second["table"], sweep["table"]);  // the HDF5 round trip is exact
+  // A measured site whose name is markup, and a file name that is not UTF-8 with a line break:
+  // the page shows them as text (issue 54, class 13).
+  in.measured = {{"<script>alert('x')</script> & \"B\"", 0.8, 52, {}}};
+  in.measured_path = "sites\xE9\nset output 'x'.csv";
   write_html_report(html, in);
   std::ifstream f(html);
   std::stringstream ss;
   ss << f.rdbuf();
   const std::string doc = ss.str();
+  EXPECT_EQ(doc.find("<script"), std::string::npos);
+  EXPECT_NE(doc.find("&lt;script&gt;alert(&#39;x&#39;)&lt;/script&gt; &amp; &quot;B&quot;"), std::string::npos);
+  EXPECT_NE(doc.find("site (sites&#xFFFD;\nset output &#39;x&#39;.csv)"), std::string::npos);
+  EXPECT_EQ(doc.find('\xE9'), std::string::npos);  // in the chart's legend too: U+FFFD, a blank
+  EXPECT_FALSE(std::filesystem::exists("x"));
   EXPECT_EQ(doc.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(doc.find("</html>"), std::string::npos);
   EXPECT_EQ(doc.find("src="), std::string::npos) << "external resource";

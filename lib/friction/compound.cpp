@@ -1,7 +1,9 @@
 #include "lib/friction/compound.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "lib/core/errors.hpp"
 #include "lib/friction/modulus_table.hpp"
@@ -64,8 +66,10 @@ std::complex<double> Compound::modulus_at_reference(double omega) const {
   std::complex<double> e(e_relaxed, 0.0);
   for (const PronyTerm& t : terms) {
     const double x = omega * t.tau;
-    // dE i x / (1 + i x) = dE (x^2 + i x) / (1 + x^2)
-    e += t.de * std::complex<double>(x * x, x) / (1 + x * x);
+    // dE i x / (1 + i x) = dE (x^2 + i x) / (1 + x^2); above x = 1 divided through by x^2, so
+    // that a long relaxation time at a high frequency (x^2 = inf) gives dE, not inf / inf.
+    if (x <= 1) e += t.de * std::complex<double>(x * x, x) / (1 + x * x);
+    else e += t.de * std::complex<double>(1 / (1 + 1 / (x * x)), 1 / (x + 1 / x));
   }
   return e;
 }
@@ -83,11 +87,15 @@ double Compound::glassy_modulus() const {
 void check_compound(const Compound& c, const std::string& source) {
   if (!(c.e_relaxed > 0 && std::isfinite(c.e_relaxed))) throw InputError(source, "prony.e_relaxed_pa must be a positive modulus in Pa");
   if (c.terms.empty()) throw InputError(source, "prony.terms: give at least one term (a purely elastic rubber has no hysteresis)");
+  if (c.terms.size() > kMaxPronyTerms)
+    throw InputError(source, "prony.terms: " + std::to_string(c.terms.size()) + " terms; at most " + std::to_string(kMaxPronyTerms));
   for (std::size_t i = 0; i < c.terms.size(); ++i) {
     const std::string at = "prony.terms[" + std::to_string(i) + "]";
-    if (!(c.terms[i].tau > 0 && std::isfinite(c.terms[i].tau))) throw InputError(source, at + ".tau_s must be a positive time in s");
+    if (!(c.terms[i].tau >= kMinTau && c.terms[i].tau <= kMaxTau))
+      throw InputError(source, at + ".tau_s must be a time in [1e-40, 1e40] s");
     if (!(c.terms[i].de >= 0 && std::isfinite(c.terms[i].de))) throw InputError(source, at + ".de_pa must be a modulus >= 0 Pa");
   }
+  if (!std::isfinite(c.glassy_modulus())) throw InputError(source, "prony: the glassy modulus e_relaxed_pa + sum of de_pa overflows");
   if (!(c.poisson > -1 && c.poisson <= 0.5)) throw InputError(source, "poisson must lie in (-1, 0.5]");
   if (!(c.wlf_c1 >= 0 && std::isfinite(c.wlf_c1))) throw InputError(source, "wlf.c1 must be a finite number >= 0");
   if (!(c.wlf_c2 > 0 && std::isfinite(c.wlf_c2))) throw InputError(source, "wlf.c2_k must be positive (K)");
@@ -117,6 +125,9 @@ Compound compound_from_json(const nlohmann::json& j, const std::string& source) 
     const nlohmann::json& p = j["prony"];
     c.e_relaxed = positive(p, "e_relaxed_pa", source);
     if (!p.contains("terms") || !p["terms"].is_array()) throw InputError(source, "prony.terms must be a list");
+    if (p["terms"].size() > kMaxPronyTerms)
+      throw InputError(source, "prony.terms: " + std::to_string(p["terms"].size()) + " terms; at most " +
+                                   std::to_string(kMaxPronyTerms) + " are read (a few per decade of relaxation time is enough)");
     for (const auto& t : p["terms"]) c.terms.push_back({positive(t, "tau_s", source), number(t, "de_pa", source)});
   } else {
     const ModulusTable table = table_from_json(j["table"], source);
@@ -136,16 +147,24 @@ Compound compound_from_json(const nlohmann::json& j, const std::string& source) 
   return c;
 }
 
-Compound read_compound_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open the compound file");
+Compound parse_compound_json(const std::string& text, const std::string& source) {
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
+    j = nlohmann::json::parse(text);  // skips a UTF-8 BOM; refuses text that is not UTF-8
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(path, std::string("not valid JSON: ") + e.what());
+    throw InputError(source, std::string("not valid JSON: ") + e.what());
   }
-  return compound_from_json(j, path);
+  return compound_from_json(j, source);
+}
+
+Compound read_compound_json(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw InputError(path, "is a directory, not a compound file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the compound file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw InputError(path, "cannot read the compound file");
+  return parse_compound_json(s.str(), path);
 }
 
 nlohmann::json compound_to_json(const Compound& c) {

@@ -63,10 +63,20 @@ struct Compound {
   double glassy_modulus() const;  // E_r + sum dE_i, Pa
 };
 
+// The friction model's cost is linear in the Prony terms (and the flash temperature's more than
+// that): a file with more is refused before any work. share/compounds has 37; a table's fit makes
+// at most 3 per decade over kMaxTableDecades + 2 decades.
+constexpr std::size_t kMaxPronyTerms = 1000;
+// Relaxation times a file may give: rubber's span 1e-12 to 1e6 s at any reference temperature;
+// beyond these bounds omega tau leaves the doubles at frequencies the friction model uses.
+constexpr double kMinTau = 1e-40, kMaxTau = 1e40;
+
 // Every constraint of the file format, InputError(source, "key: problem") on the first broken one.
 void check_compound(const Compound& c, const std::string& source);
 // Reads and checks a compound JSON file (InputError naming the file and the key at fault).
 Compound read_compound_json(const std::string& path);
+// The same on the file's text (`source` names it in messages).
+Compound parse_compound_json(const std::string& text, const std::string& source);
 Compound compound_from_json(const nlohmann::json& j, const std::string& source);
 nlohmann::json compound_to_json(const Compound& c);
 

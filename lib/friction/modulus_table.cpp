@@ -12,17 +12,23 @@ void check_modulus_table(const ModulusTable& t, const std::string& source) {
   if (t.omega.size() != t.storage.size() || t.omega.size() != t.loss.size())
     throw InputError(source, "table: omega_rad_s, storage_pa and loss_pa must have the same length");
   if (t.omega.size() < 4) throw InputError(source, "table: give at least 4 frequencies");
+  if (t.omega.size() > kMaxTableRows)
+    throw InputError(source, "table: " + std::to_string(t.omega.size()) + " frequencies; at most " +
+                                 std::to_string(kMaxTableRows) + " are fitted (thin the table)");
   for (std::size_t i = 0; i < t.omega.size(); ++i) {
     const std::string at = "table row " + std::to_string(i);
     if (!(t.omega[i] > 0 && std::isfinite(t.omega[i]))) throw InputError(source, at + ": omega must be positive (rad/s)");
+    if (!(t.omega[i] >= kMinOmega && t.omega[i] <= kMaxOmega)) throw InputError(source, at + ": omega must lie in [1e-30, 1e30] rad/s");
     if (i > 0 && !(t.omega[i] > t.omega[i - 1])) throw InputError(source, at + ": frequencies must ascend");
     if (!(t.storage[i] > 0 && std::isfinite(t.storage[i]))) throw InputError(source, at + ": storage modulus must be positive (Pa)");
     if (!(t.loss[i] > 0 && std::isfinite(t.loss[i]))) throw InputError(source, at + ": loss modulus must be positive (Pa)");
   }
+  if (std::log10(t.omega.back() / t.omega.front()) > kMaxTableDecades)
+    throw InputError(source, "table: the frequencies span more than 40 decades (rad/s); a master curve spans 10 to 25");
 }
 
 PronyFit fit_prony(const ModulusTable& t) {
-  const double lo = std::log10(1 / t.omega.back()) - 1, hi = std::log10(1 / t.omega.front()) + 1;
+  const double lo = -std::log10(t.omega.back()) - 1, hi = -std::log10(t.omega.front()) + 1;
   const int m = static_cast<int>(std::ceil((hi - lo) * kTermsPerDecade)) + 1;
   std::vector<double> tau(static_cast<std::size_t>(m));
   for (int i = 0; i < m; ++i) tau[static_cast<std::size_t>(i)] = std::pow(10.0, lo + (hi - lo) * i / (m - 1));

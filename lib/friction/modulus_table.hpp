@@ -11,6 +11,7 @@
 // above kCausalityTolerance means no causal material has this pair of curves: the table is
 // refused, naming the frequency where the two curves disagree most. (The discrete KK test of
 // Booij & Thoone, Rheol. Acta 21, 15 (1982), in the form of a constrained fit.)
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,13 @@ namespace wr {
 
 constexpr int kTermsPerDecade = 3;
 constexpr double kCausalityTolerance = 0.10;  // largest relative misfit of E' or E'' accepted
+// Bounds on what a table may cost before it is fitted (the fit is a dense NNLS of 2 rows per
+// frequency by 3 columns per decade): measured master curves have tens to hundreds of rows over
+// 10 to 25 decades of reduced frequency. Frequencies outside [kMinOmega, kMaxOmega] rad/s would
+// put relaxation times beyond the doubles (1 / 5e-324 is inf).
+constexpr std::size_t kMaxTableRows = 2000;
+constexpr double kMaxTableDecades = 40;
+constexpr double kMinOmega = 1e-30, kMaxOmega = 1e30;
 
 struct ModulusTable {
   std::vector<double> omega;    // rad/s, ascending, > 0
@@ -36,8 +44,9 @@ struct PronyFit {
   bool worst_is_loss = false;
 };
 
-// Throws InputError(source, ...) for a malformed table (fewer than 4 rows, unsorted or
-// non-positive frequencies, non-positive or non-finite moduli, columns of different lengths).
+// Throws InputError(source, ...) for a malformed table (fewer than 4 or more than kMaxTableRows
+// rows, unsorted frequencies or ones outside [kMinOmega, kMaxOmega], more than kMaxTableDecades
+// decades, non-positive or non-finite moduli, columns of different lengths).
 void check_modulus_table(const ModulusTable& t, const std::string& source);
 PronyFit fit_prony(const ModulusTable& t);
 // fit_prony, then InputError(source, "not causal: ...") when max_misfit > kCausalityTolerance.
