@@ -22,6 +22,14 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+// `s` as one word for /bin/sh: inside single quotes nothing is special but the quote itself,
+// written '\'' (a file name with a quote must neither break the command nor name another file).
+std::string shell_quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 // A title or label as a gnuplot literal. A line break would end the command (and let a file name
 // in a label write gnuplot commands), and the SVG is inlined into a UTF-8 page: controls become
 // blanks and bytes that are not UTF-8 U+FFFD (gnuplot escapes & < > itself).
@@ -92,7 +100,7 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
     f << g.str();
     if (!f) throw std::runtime_error(path + ": cannot write the gnuplot script " + script);
   }
-  const std::string cmd = "gnuplot " + quoted(script) + " 2>&1";
+  const std::string cmd = "gnuplot " + shell_quoted(script) + " 2>&1";
   std::string output;
   int status = -1;
   if (FILE* p = popen(cmd.c_str(), "r")) {

@@ -381,6 +381,11 @@ TEST_F(Hostile, Class13_MessagesNameWhatIsWrong) {
   EXPECT_EQ(resumed.code, 2);
   EXPECT_NE(resumed.err.find("coverages is [0.0,0.2,0.4], was [0.0,0.2]"), std::string::npos) << resumed.err;
   EXPECT_EQ(resumed.err.find("absent"), std::string::npos) << resumed.err;
+  // A chart folder whose name holds a quote: the charts land there (gnuplot is run through sh).
+  const CliRun charts = run(sweep + "2 --coverages 0 0.2 --plots \"" + path("it's") + "\"");
+  EXPECT_EQ(charts.code, 0) << charts.err;
+  ASSERT_TRUE(fs::is_directory(path("it's"))) << charts.err;
+  EXPECT_FALSE(fs::is_empty(path("it's"))) << charts.err;
 }
 
 }  // namespace
