@@ -432,6 +432,9 @@ LoadedSurface load_surface(const std::string& path, const TextGridOptions& text,
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a file");
+  // A FIFO would block the open below until a writer comes (and could not be read twice).
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, "is not a regular file (a pipe, device or socket); save it to a file first");
   if (std::ifstream probe(path, std::ios::binary); !probe)
     throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
   const std::string ext = std::filesystem::path(path).extension().string();

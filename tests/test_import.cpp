@@ -1,5 +1,7 @@
 // Import: text grids, HDF5 round trip, dropout filling, mean-plane removal.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -86,6 +88,18 @@ TEST(Import, NulByteInsideANumberIsRefusedNamingLineAndColumn) {
   std::filesystem::remove(path);
   EXPECT_NE(e.find("line 2, column 3 (field 2)"), std::string::npos) << e;
   EXPECT_NE(e.find("'4\\x005' is not a number"), std::string::npos) << e;  // the NUL shown, on one line
+}
+
+// Issue 54 class 2: a FIFO (a path that is no regular file) is refused before it is opened; an
+// open would block until a writer came, a hang rather than an answer.
+TEST(Import, AFifoIsRefusedNotOpened) {
+  const std::string path = (std::filesystem::temp_directory_path() / ("wetroad-fifo-" + std::to_string(::getpid()))).string();
+  ASSERT_EQ(::mkfifo(path.c_str(), 0644), 0);
+  TextGridOptions opt;
+  opt.dx = 1e-4;
+  const std::string e = refusal(path, opt);
+  std::filesystem::remove(path);
+  EXPECT_NE(e.find("not a regular file"), std::string::npos) << e;
 }
 
 TEST(Import, EveryLineEndCountsOnceOldMacCrIncluded) {
