@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "lib/core/errors.hpp"
 #include "lib/core/utf8.hpp"
+#include "lib/io/input_file.hpp"
 
 namespace wr {
 namespace {
@@ -213,13 +211,7 @@ std::vector<MeasuredSkid> parse_measured_skid_csv(const std::string& text, const
 }
 
 std::vector<MeasuredSkid> read_measured_skid_csv(const std::string& path) {
-  if (std::filesystem::is_directory(path)) throw InputError(path, "is a directory, not a measured skid-number CSV");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the measured skid-number CSV");
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw InputError(path, "cannot read the measured skid-number CSV");
-  return parse_measured_skid_csv(s.str(), path);
+  return parse_measured_skid_csv(read_input_file(path, "measured skid-number CSV"), path);
 }
 
 }  // namespace wr

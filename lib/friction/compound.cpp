@@ -1,12 +1,10 @@
 #include "lib/friction/compound.hpp"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "lib/core/errors.hpp"
 #include "lib/friction/modulus_table.hpp"
+#include "lib/io/input_file.hpp"
 
 namespace wr {
 namespace {
@@ -158,13 +156,7 @@ Compound parse_compound_json(const std::string& text, const std::string& source)
 }
 
 Compound read_compound_json(const std::string& path) {
-  if (std::filesystem::is_directory(path)) throw InputError(path, "is a directory, not a compound file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the compound file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw InputError(path, "cannot read the compound file");
-  return parse_compound_json(s.str(), path);
+  return parse_compound_json(read_input_file(path, "compound file"), path);
 }
 
 nlohmann::json compound_to_json(const Compound& c) {
