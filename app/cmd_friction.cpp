@@ -10,11 +10,9 @@
 #include "lib/friction/friction_file.hpp"
 #include "lib/friction/friction_scene.hpp"
 #include "lib/io/atomic_output.hpp"
-#include "lib/io/hdf5_file.hpp"
 #include "lib/io/output_set.hpp"
 #include "reports/plot.hpp"
 #include "roads/surface_import.hpp"
-#include "roads/x3p_file.hpp"
 #include "water/water_file.hpp"
 #include "wetroad/version.hpp"
 
