@@ -7,6 +7,7 @@
 #include "app/commands.hpp"
 #include "app/print_summary.hpp"
 #include "lib/core/errors.hpp"
+#include "lib/core/number_text.hpp"
 #include "lib/friction/friction_file.hpp"
 #include "lib/friction/friction_scene.hpp"
 #include "lib/io/atomic_output.hpp"
@@ -20,7 +21,10 @@ namespace wr::app {
 namespace {
 
 struct FrictionCli {
-  std::string input, wet, compound, json, out, plot, plot_q1;
+  std::string input, wet, compound, json, out, plot, plot_q1, test = "e274-ribbed";
+  double water_film = 0;
+  bool no_film = false;
+  CLI::Option* film_opt = nullptr;
   double temperature = 20, pressure = 3e5;
   std::vector<double> speeds, speed_range;
   double q1 = 0;
@@ -62,7 +66,37 @@ PlotSpec curve_plot(const FrictionRun& r, const FrictionScene& s) {
     p.series.push_back(series(*r.wet_homogeneous, "wet, homogeneous sealing" + std::string(cov)));
     p.series.push_back(series(*r.wet_local, "wet, local sealing" + std::string(cov)));
   }
+  if (r.film) {
+    PlotSeries ps;
+    ps.label = "under a " + number_text(1e3 * s.film->test.water_film) + " mm water film (" + s.film->test.name + ")";
+    for (const FilmPoint& q : r.film->points) {
+      ps.x.push_back(q.v);
+      ps.y.push_back(q.mu);
+    }
+    p.series.push_back(ps);
+  }
   return p;
+}
+
+void print_film(const SkidCurve& c, const FilmScene& f) {
+  std::printf("\nwet friction at speed: test %s, water film %.3g mm, patch %.3g m, drainage length %.3g m\n", f.test.name.c_str(),
+              1e3 * f.test.water_film, f.test.patch_length, f.test.drainage_length);
+  std::printf("  %9s %7s %8s %10s %10s %11s %11s\n", "v (km/h)", "SN", "mu_h", "load share", "mu viscous", "drain (ms)", "patch (ms)");
+  for (const FilmPoint& p : c.skid)
+    std::printf("  %9.0f %7.1f %8.4f %10.3f %10.2e %11.3g %11.3g\n", 3.6 * p.v, 100 * p.mu, p.mu_hysteresis, p.load_share,
+                p.mu_viscous, 1e3 * p.drain_time, 1e3 * p.patch_time);
+  std::printf("  skid number at %.0f km/h: SN %.1f (hysteresis of the drained road alone: %.1f)\n", 3.6 * f.test.slip_speed, c.sn,
+              100 * c.at_test.mu_hysteresis);
+  if (std::isfinite(c.sp_kmh))
+    std::printf("  speed constant Sp %.1f km/h (ASTM E1960 exponential fitted over 20-100 km/h, rms of ln mu %.3f)\n", c.sp_kmh,
+                c.sp_fit_rms);
+  else
+    std::printf("  speed constant Sp: none (mu does not fall with speed over 20-100 km/h)\n");
+  std::printf("  FR60 (mu at 60 km/h) %.4f\n", c.fr60);
+  if (std::isfinite(c.hydroplaning_kmh))
+    std::printf("  hydroplaning above %.0f km/h (the film does not reach the asperities within the patch)\n", c.hydroplaning_kmh);
+  else
+    std::printf("  no hydroplaning: the texture holds the film or drains it to the asperities at any speed\n");
 }
 
 void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<std::pair<double, double>>& q1_scan) {
@@ -83,16 +117,17 @@ void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<s
     std::printf("\n");
   }
   std::printf("\n  peak: mu %.4f at v %.3g m/s\n", r.dry.peak_mu, r.dry.peak_v);
-  std::printf("  locked wheel (64 km/h): mu %.4f, SN %.1f", r.dry.at_locked_wheel.mu, r.dry.sn64);
+  std::printf("  at 64 km/h, drained road: mu %.4f", r.dry.at_locked_wheel.mu);
   if (r.wet_homogeneous)
     std::printf("; wet (coverage %.1f %%): homogeneous %.4f, local %.4f", 100 * r.coverage, r.wet_homogeneous->at_locked_wheel.mu,
                 r.wet_local->at_locked_wheel.mu);
   std::printf("\n");
   if (!q1_scan.empty()) {
-    std::printf("  mu at 17.9 m/s against the cut-off q1 (the unmeasured scales):");
+    std::printf("  dry mu at 17.9 m/s against the cut-off q1 (the unmeasured scales):");
     for (const auto& [q1, mu] : q1_scan) std::printf(" %.3g:%.3f", q1, mu);
     std::printf("\n");
   }
+  if (r.film) print_film(*r.film, *s.film);
   std::printf("\nchecks\n");
   for (const ValidityCheck& c : r.checks)
     std::printf("  [%s] %s: %s\n", c.passed ? "pass" : (c.decides_model ? "FAIL" : "flag"), c.name.c_str(), c.detail.c_str());
@@ -117,6 +152,17 @@ int run_friction_command(const FrictionCli& c) {
   if (c.q1_opt->count()) s.q1 = c.q1;
   if (c.speeds_opt->count() && c.range_opt->count()) throw InputError("--speeds", "give --speeds or --speed-range, not both");
   s.speeds = c.speeds_opt->count() ? c.speeds : log_speeds(c.range_opt->count() ? c.speed_range : std::vector<double>{1e-6, 100, 33});
+  if (!c.no_film) {
+    FilmScene film;
+    film.test = tyre_test(c.test);
+    if (c.film_opt->count()) {
+      check_water_film(c.water_film, "--water-film");
+      film.test.water_film = c.water_film;
+    }
+    s.film = film;
+  } else if (c.film_opt->count()) {
+    throw InputError("--water-film", "--no-film computes no film: give one or the other");
+  }
   check_friction_scene(s);
 
   const LoadedSurface dry = load_surface(c.input);
@@ -143,7 +189,12 @@ int run_friction_command(const FrictionCli& c) {
   prov.parameters = {{"pressure", s.options.pressure},       {"temperature", s.options.temperature},
                      {"flash_temperature", c.flash},         {"q1", r.dry_spectrum.q_end},
                      {"points_per_decade", c.points_per_decade}, {"speeds", s.speeds}};
-  prov.model = "hysteresis (Persson 2001; sealing: homogeneous and local)";
+  if (s.film) {
+    prov.parameters["test"] = s.film->test.name;
+    prov.parameters["water_film"] = s.film->test.water_film;
+  }
+  prov.model = std::string("hysteresis (Persson 2001; sealing: homogeneous and local)") +
+               (s.film ? "; water film squeezed out at speed (Lorenz & Persson 2010; effective-medium flow)" : "");
   prov.timings = r.timer.to_json();
   nlohmann::json j = friction_run_json(r, s);
   nlohmann::json scan = nlohmann::json::array();
@@ -187,7 +238,12 @@ Command add_friction(CLI::App& root) {
       "curve E(omega, T) (WLF shift). --wet adds the wet surface of `wetroad fill` with two sealing\n"
       "models: homogeneous (the wet surface's PSD) and local (sealed water carries load, dissipates\n"
       "nothing; the dry patches keep their roughness). Prints mu(v), A/A0, the flash temperature's\n"
-      "rise, the peak, mu at 64 km/h (SN = 100 mu) and the model's validity checks.\n"
+      "rise, the peak and the model's validity checks.\n"
+      "Wet at speed (unless --no-film): a water film (--water-film, default E274's 0.5 mm) is squeezed out\n"
+      "through the texture while a road element is under the tread (Lorenz & Persson 2010; the test's patch\n"
+      "and drainage length, --test); the asperities' load share slides with the hysteresis friction, the\n"
+      "water's shears as a film. Prints SN at 20-100 km/h, the skid number at the test's speed, the speed\n"
+      "constant Sp (ASTM E1960), FR60 and the hydroplaning speed.\n"
       "Default compound: share/compounds/synthetic-tread.json (SYNTHETIC: see its source field).\n"
       "Example: wetroad friction road.h5 --wet road-wet.h5 --flash-temperature --plot mu.svg");
   s->add_option("surface", c->input, "the dry surface (HDF5 map or text grid)")->type_name("FILE")->required();
@@ -205,6 +261,14 @@ Command add_friction(CLI::App& root) {
   s->add_option("--out", c->out, "write the curves and the spectrum as HDF5")->type_name("OUTPUT");
   s->add_option("--plot", c->plot, "chart mu(v) dry and wet as SVG")->type_name("OUTPUT");
   s->add_option("--plot-q1", c->plot_q1, "chart mu at 17.9 m/s against the cut-off q1 as SVG")->type_name("OUTPUT");
+  c->film_opt = s->add_option("--water-film", c->water_film,
+                               "depth of the water film ahead of the tyre in m (volume per unit area; default: the test's, 0.5e-3 for E274)");
+  s->add_option("--test", c->test,
+                "skid test and tyre: e274-ribbed (ASTM E501 rib tyre), e274-smooth (ASTM E524), or a JSON file "
+                "(keys: docs/file-formats.md)")
+      ->type_name("FILE")
+      ->capture_default_str();
+  s->add_flag("--no-film", c->no_film, "no water film: only the hysteresis friction of the drained road");
   s->add_option("--threads", c->threads, "worker threads over speeds (default: all)")->check(CLI::NonNegativeNumber);
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_friction_command(*c); }};

@@ -34,7 +34,10 @@ namespace {
 struct SweepCommonCli {
   std::string model = "fem", out, csv, json, plots;
   SceneCli sc;  // every scene option (app/scene_options.hpp), with the sweeps' defaults
-  std::string compound;
+  std::string compound, test = "e274-ribbed";
+  double water_film = 0;
+  bool no_film = false;
+  CLI::Option* film_opt = nullptr;
   double pressure = 3e5, temperature = 20, speed = kLockedWheelSpeed, friction_q1 = 0;
   bool flash = false;
   CLI::Option* q1_opt = nullptr;
@@ -65,7 +68,12 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
       s.add_option("--temperature", c.temperature, "hysteresis: temperature, deg C")->capture_default_str(),
       s.add_option("--speed", c.speed, "hysteresis: sliding speed, m/s (default 17.9: the locked wheel at 64 km/h)"),
       c.q1_opt = s.add_option("--friction-q1", c.friction_q1, "hysteresis: spectrum cut-off q1, 1/m (as `friction --q1`)"),
-      s.add_flag("--flash-temperature", c.flash, "hysteresis: with the flash temperature (as `friction`)")};
+      s.add_flag("--flash-temperature", c.flash, "hysteresis: with the flash temperature (as `friction`)"),
+      c.film_opt = s.add_option("--water-film", c.water_film, "hysteresis: water film ahead of the tyre, m (default: the test's, 0.5e-3)"),
+      s.add_option("--test", c.test, "hysteresis: skid test and tyre, e274-ribbed, e274-smooth or a JSON file (as `friction`)")
+          ->type_name("FILE")
+          ->capture_default_str(),
+      s.add_flag("--no-film", c.no_film, "hysteresis: no water film, the drained road's hysteresis friction only")};
   s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)")->check(CLI::NonNegativeNumber);
   s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->type_name("OUTPUT")->required();
   s.add_option("--csv", c.csv, "also write the table as CSV")->type_name("OUTPUT");
@@ -120,6 +128,16 @@ std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
   s.options.flash_temperature = c.flash;
   if (c.q1_opt->count()) s.q1 = c.friction_q1;
   s.speeds = {c.speed};
+  if (c.no_film && c.film_opt->count()) throw InputError("--water-film", "--no-film computes no film: give one or the other");
+  if (!c.no_film) {
+    FilmScene film;
+    film.test = tyre_test(c.test);
+    if (c.film_opt->count()) {
+      check_water_film(c.water_film, "--water-film");
+      film.test.water_film = c.water_film;
+    }
+    s.film = film;
+  }
   check_friction_scene(s);
   return s;
 }

@@ -85,6 +85,7 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
   r.dry_spectrum = spectrum_from_psd(r.measured, r.nyquist, r.fit, s.q1, source);
   r.timer.start("dry mu(v)");
   r.dry = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
+  std::optional<RoughnessSpectrum> sealed;  // the local sealing model's spectrum
   if (wet) {
     if (wet->height->nx != dry.nx || wet->height->ny != dry.ny)
       throw InputError(source, "the wet surface's grid differs from the dry surface's");
@@ -99,6 +100,20 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
     RoughnessSpectrum local = homogeneous;
     local.scale = 1 / phi;
     r.wet_local = curve("wet-local", local, s, phi, phi);
+    sealed = local;
+  }
+  if (s.film) {
+    r.timer.start("film at speed");
+    // mu_h(v): the local sealing model's friction on a wet surface (the water left in the pools
+    // once the film has drained), the dry one otherwise.
+    const RoughnessSpectrum& hyst = sealed ? *sealed : r.dry_spectrum;
+    const double scale = sealed ? 1 - r.coverage : 1.0;
+    auto mu_h = [&](const std::vector<double>& v) {
+      std::vector<double> mu;
+      for (const FrictionPoint& p : friction_curve(hyst, s.compound, v, s.options)) mu.push_back(scale * p.mu);
+      return mu;
+    };
+    r.film = skid_curve(r.dry_spectrum, s.compound, s.options, *s.film, s.speeds, mu_h);
   }
   r.timer.start("checks");
   r.checks = scene_checks(r, s);
@@ -131,6 +146,46 @@ nlohmann::json friction_curve_json(const FrictionCurve& c) {
           {"locked_wheel", {{"v", kLockedWheelSpeed}, {"mu", c.at_locked_wheel.mu},
                             {"area_fraction", c.at_locked_wheel.area_fraction},
                             {"temperature_rise", c.at_locked_wheel.temperature_rise}}}};
+}
+
+namespace {
+nlohmann::json finite_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json film_point_json(const FilmPoint& p) {
+  return {{"v", p.v},
+          {"mu", p.mu},
+          {"mu_hysteresis", p.mu_hysteresis},
+          {"mu_viscous", p.mu_viscous},
+          {"load_share", p.load_share},
+          {"patch_time", p.patch_time},
+          {"drain_time", finite_or_null(p.drain_time)},
+          {"contact_time", finite_or_null(p.contact_time)},
+          {"equilibrium_separation", p.equilibrium_separation},
+          {"final_separation", p.final_separation},
+          {"trapped", p.trapped}};
+}
+}  // namespace
+
+nlohmann::json skid_curve_json(const SkidCurve& c, const FilmScene& film, double temperature) {
+  nlohmann::json speeds = nlohmann::json::array(), skid = nlohmann::json::array();
+  for (const FilmPoint& p : c.points) speeds.push_back(film_point_json(p));
+  for (const FilmPoint& p : c.skid) skid.push_back(film_point_json(p));
+  return {{"test", film.test.name},
+          {"source", film.test.source},
+          {"patch_length", film.test.patch_length},
+          {"drainage_length", film.test.drainage_length},
+          {"slip_speed", film.test.slip_speed},
+          {"water_film", film.test.water_film},
+          {"viscosity", water_viscosity(temperature)},
+          {"critical_contact", film.critical_contact},
+          {"sn", c.sn},
+          {"sp_kmh", finite_or_null(c.sp_kmh)},
+          {"sp_fit_rms", c.sp_fit_rms},
+          {"fr60", c.fr60},
+          {"hydroplaning_kmh", finite_or_null(c.hydroplaning_kmh)},
+          {"at_test", film_point_json(c.at_test)},
+          {"speeds", speeds},
+          {"skid", skid}};
 }
 
 nlohmann::json hysteresis_validity_json(const std::vector<ValidityCheck>& checks) {
@@ -166,6 +221,7 @@ nlohmann::json friction_run_json(const FrictionRun& r, const FrictionScene& s) {
                 {"homogeneous", friction_curve_json(*r.wet_homogeneous)},
                 {"local", friction_curve_json(*r.wet_local)}};
   }
+  if (r.film) j["water_film"] = skid_curve_json(*r.film, *s.film, s.options.temperature);
   j["timings"] = r.timer.to_json();
   return j;
 }

@@ -36,6 +36,7 @@
 #include "lib/friction/compound.hpp"
 #include "lib/friction/hysteresis_friction.hpp"
 #include "lib/friction/roughness_spectrum.hpp"
+#include "lib/friction/skid_at_speed.hpp"
 
 namespace wr {
 
@@ -50,6 +51,9 @@ struct FrictionScene {
   FrictionOptions options;       // pressure, temperature, quadrature, flash temperature, threads
   std::optional<double> q1;      // 1/m; absent: max(kDefaultQ1, the map's last resolved wavenumber)
   std::vector<double> speeds;    // m/s, > 0
+  // Wet friction at speed under a water film (lib/friction/skid_at_speed.hpp); absent: the
+  // hysteresis friction of the drained road alone.
+  std::optional<FilmScene> film;
 };
 
 struct FrictionCurve {
@@ -73,6 +77,10 @@ struct FrictionRun {
   FrictionCurve dry;
   std::optional<FrictionCurve> wet_homogeneous, wet_local;
   double coverage = 0;
+  // With a film: mu(v) at the scene's speeds and 20-100 km/h, the skid number, Sp, FR60 and the
+  // hydroplaning speed; mu_h from the local sealing model's curve when a wet surface is given,
+  // else the dry one.
+  std::optional<SkidCurve> film;
   std::vector<ValidityCheck> checks;  // pressure vs modulus, unmeasured share, compound origin
   PhaseTimer timer;
 };
@@ -93,6 +101,11 @@ std::vector<std::pair<double, double>> mu_against_q1(const FrictionRun& r, const
                                                      const std::vector<double>& q1s, const std::string& source);
 
 nlohmann::json friction_curve_json(const FrictionCurve& c);
+// {test, source, patch_length, drainage_length, slip_speed, water_film, viscosity, critical_contact,
+//  sn, sp_kmh (null: mu does not fall with speed), sp_fit_rms, fr60, hydroplaning_kmh (null: none),
+//  at_test {...}, speeds [...], skid [...]}, each point {v, mu, mu_hysteresis, mu_viscous,
+//  load_share, patch_time, drain_time, contact_time, equilibrium_separation, final_separation, trapped}.
+nlohmann::json skid_curve_json(const SkidCurve& c, const FilmScene& film, double temperature);
 // {model: "hysteresis", mechanism, valid, checks: [{check, passed, detail}]}.
 nlohmann::json hysteresis_validity_json(const std::vector<ValidityCheck>& checks);
 // The JSON of `wetroad friction` (SI units): model, compound, temperature, pressure, q0, q1,

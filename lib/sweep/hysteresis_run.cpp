@@ -1,5 +1,7 @@
 #include "lib/sweep/hysteresis_run.hpp"
 
+#include <cmath>
+
 namespace wr {
 
 nlohmann::json friction_scene_json(const FrictionScene& s) {
@@ -11,7 +13,15 @@ nlohmann::json friction_scene_json(const FrictionScene& s) {
           {"points_per_decade", s.options.points_per_decade},
           {"flash_temperature", s.options.flash_temperature},
           {"q1", s.q1 ? nlohmann::json(*s.q1) : nlohmann::json(nullptr)},
-          {"speeds", s.speeds}};
+          {"speeds", s.speeds},
+          {"film", s.film ? nlohmann::json{{"test", s.film->test.name},
+                                           {"source", s.film->test.source},
+                                           {"patch_length", s.film->test.patch_length},
+                                           {"drainage_length", s.film->test.drainage_length},
+                                           {"slip_speed", s.film->test.slip_speed},
+                                           {"water_film", s.film->test.water_film},
+                                           {"critical_contact", s.film->critical_contact}}
+                          : nlohmann::json(nullptr)}};
 }
 
 nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::optional<WetSurface>& wet,
@@ -25,7 +35,7 @@ nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::opt
   const FrictionPoint& hom = has_water ? r.wet_homogeneous->points.front() : dry;
   const FrictionPoint& loc = has_water ? r.wet_local->points.front() : dry;
   const FrictionPoint& low = has_water ? r.wet_local->points.back() : r.dry.points.back();
-  return {{"model", "hysteresis"},
+  nlohmann::json rec = {{"model", "hysteresis"},
           {"speed", dry.v},
           {"mu_peak", loc.mu},
           {"mu_dry", dry.mu},
@@ -42,6 +52,26 @@ nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::opt
           {"failed", false},
           {"message", ""},
           {"validity", hysteresis_validity_json(r.checks)}};
+  if (r.film) {
+    // Under the film: mu at the sweep's speed and at 20 km/h are the wet friction at speed; the
+    // drained road's hysteresis friction stays as mu_drained.
+    const SkidCurve& f = *r.film;
+    rec["mu_drained"] = loc.mu;
+    rec["mu_peak"] = f.points.front().mu;
+    rec["mu_low_speed"] = f.points.back().mu;
+    rec["sn"] = f.sn;
+    rec["sn_speed"] = f.at_test.v;
+    rec["sp_kmh"] = std::isfinite(f.sp_kmh) ? nlohmann::json(f.sp_kmh) : nlohmann::json(nullptr);
+    rec["fr60"] = f.fr60;
+    rec["hydroplaning_kmh"] = std::isfinite(f.hydroplaning_kmh) ? nlohmann::json(f.hydroplaning_kmh) : nlohmann::json(nullptr);
+    rec["load_share"] = f.at_test.load_share;
+    rec["drain_time"] = std::isfinite(f.at_test.drain_time) ? nlohmann::json(f.at_test.drain_time) : nlohmann::json(nullptr);
+    rec["patch_time"] = f.at_test.patch_time;
+    nlohmann::json sn_v = nlohmann::json::array();
+    for (const FilmPoint& p : f.skid) sn_v.push_back({p.v * 3.6, 100 * p.mu});
+    rec["sn_against_speed"] = sn_v;  // [[km/h, SN], ...]
+  }
+  return rec;
 }
 
 }  // namespace wr
