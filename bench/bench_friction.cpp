@@ -50,6 +50,18 @@ nlohmann::json friction_speed(std::size_t n, int speeds, int repeats, int thread
   FrictionOptions flash = s.options;
   flash.flash_temperature = true;
   const double t_flash = best_of(repeats, [&] { hot = friction_curve(psd, s.compound, s.speeds, flash); });
+  // Wet at speed: the film's squeeze-out and patch average at the same speeds (after mu_h, which
+  // is the flash curve above), the skid speeds, Sp and the hydroplaning speed (issue 55, bar 6).
+  FilmScene film;
+  film.test = tyre_test("e274-ribbed");
+  SkidCurve skid;
+  const double t_film = best_of(repeats, [&] {
+    skid = skid_curve(psd, s.compound, flash, film, s.speeds, [&](const std::vector<double>& v) {
+      std::vector<double> mu;
+      for (const FrictionPoint& p : friction_curve(psd, s.compound, v, flash)) mu.push_back(p.mu);
+      return mu;
+    });
+  });
   // Speed against accuracy: the largest relative error of mu over the speeds, per node density.
   FrictionOptions ref_opt = s.options;
   ref_opt.points_per_decade = 400;
@@ -80,6 +92,9 @@ nlohmann::json friction_speed(std::size_t n, int speeds, int repeats, int thread
           {"curve_flash_seconds", t_flash},
           {"peak_mu_isothermal", peak_iso},
           {"peak_mu_flash", peak_hot},
+          {"film_seconds", t_film},
+          {"film_sn", skid.sn},
+          {"film_sp_kmh", std::isfinite(skid.sp_kmh) ? nlohmann::json(skid.sp_kmh) : nlohmann::json(nullptr)},
           {"accuracy_ladder", ladder}};
 }
 

@@ -23,6 +23,45 @@ PlotSeries curve_series(const nlohmann::json& curve, const std::string& label) {
   return s;
 }
 
+// The wet friction at speed under the film: SN against speed, the skid number, Sp, FR60.
+std::string film_html(const nlohmann::json& f, const std::string& chart_dir) {
+  std::ostringstream o;
+  o << "<h3>Skid numbers at speed under a " << fmt(1e3 * num(f["water_film"]), "%.3g") << " mm water film (test "
+    << escape(f.value("test", std::string("?"))) << ")</h3>\n"
+    << "<p>A road element spends the time L<sub>c</sub>/v = " << fmt(num(f["patch_length"]), "%.3g")
+    << " m / v under the sliding tread; the film drains across the drainage length " << fmt(1e3 * num(f["drainage_length"]), "%.3g")
+    << " mm through the texture (Lorenz &amp; Persson's squeeze-out with Persson's load-separation and the effective-medium "
+       "flow conductance); the asperities' share of the load slides with the hysteresis friction, the water's is sheared "
+       "as a film. Source of the test's values: "
+    << escape(f.value("source", std::string("?"))) << ".</p>\n";
+  PlotSpec spec{"skid number against speed", "speed [km/h]", "SN = 100 mu", false, false, {}};
+  PlotSeries wet{"under the film", {}, {}, "linespoints", {}}, drained{"drained road (hysteresis alone)", {}, {}, "lines", {}};
+  for (const auto& p : f["skid"]) {
+    wet.x.push_back(3.6 * num(p["v"]));
+    wet.y.push_back(100 * num(p["mu"]));
+    drained.x.push_back(3.6 * num(p["v"]));
+    drained.y.push_back(100 * num(p["mu_hysteresis"]));
+  }
+  spec.series = {wet, drained};
+  const std::string chart = chart_dir + "/sn_speed.svg";
+  write_svg_plot(chart, spec);
+  o << html::figure(chart, "Skid number against speed under the film, and the drained road's hysteresis friction.");
+  const auto& t = f["at_test"];
+  o << "<ul><li><b>skid number at " << fmt(3.6 * num(f["slip_speed"]), "%.0f") << " km/h: SN " << fmt(num(f["sn"]), "%.1f")
+    << "</b> (asperities carry " << fmt(100 * num(t["load_share"]), "%.1f") << " % of the load over the patch; "
+    << (t["drain_time"].is_null() ? std::string("the film never drains to 90 %")
+                                  : "the film drains to 90 % load share in " + fmt(1e3 * num(t["drain_time"]), "%.3g") + " ms")
+    << " against " << fmt(1e3 * num(t["patch_time"]), "%.3g") << " ms under the tyre)</li>"
+    << "<li>speed constant Sp "
+    << (f["sp_kmh"].is_null() ? std::string("none (friction does not fall with speed)") : fmt(num(f["sp_kmh"]), "%.1f") + " km/h")
+    << " (ASTM E1960's exponential fitted over 20&ndash;100 km/h); FR60 " << fmt(num(f["fr60"]), "%.3f") << "</li>"
+    << "<li>hydroplaning: "
+    << (f["hydroplaning_kmh"].is_null() ? std::string("none at any speed (the texture holds or drains the film)")
+                                        : "above " + fmt(num(f["hydroplaning_kmh"]), "%.0f") + " km/h")
+    << "</li></ul>\n";
+  return o.str();
+}
+
 }  // namespace
 
 std::string friction_section_html(const std::string& file, const nlohmann::json& j, const std::string& chart_dir) {
@@ -52,13 +91,13 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
   write_svg_plot(chart, spec);
   o << html::figure(chart, "Hysteresis friction against sliding speed, dry and on the wet surface.");
   o << "<ul><li>dry: peak &mu; " << fmt(num(j["peak"]["mu"])) << " at " << fmt(num(j["peak"]["v"]), "%.3g")
-    << " m/s; at 64 km/h &mu; " << fmt(num(j["locked_wheel"]["mu"])) << " (SN " << fmt(num(j["sn64"]), "%.1f")
-    << "), flash temperature rise " << fmt(num(j["locked_wheel"]["temperature_rise"]), "%.1f") << " K</li>";
+    << " m/s; at 64 km/h &mu; " << fmt(num(j["locked_wheel"]["mu"]))
+    << " (a dry road has no skid number), flash temperature rise " << fmt(num(j["locked_wheel"]["temperature_rise"]), "%.1f") << " K</li>";
   if (wet)
     for (const char* m : {"homogeneous", "local"}) {
       const auto& c = j["wet"][m];
       o << "<li>wet, " << m << " sealing: peak &mu; " << fmt(num(c["peak"]["mu"])) << " at " << fmt(num(c["peak"]["v"]), "%.3g")
-        << " m/s; at 64 km/h &mu; " << fmt(num(c["locked_wheel"]["mu"])) << " (SN " << fmt(num(c["sn64"]), "%.1f") << ")</li>";
+        << " m/s; at 64 km/h &mu; " << fmt(num(c["locked_wheel"]["mu"])) << " (pools sealed, no film)</li>";
     }
   o << "</ul>\n<table><tr><th>v [m/s]</th><th>&mu; dry</th><th>A/A0</th><th>&Delta;T [K]</th>"
     << (wet ? "<th>&mu; wet, homogeneous</th><th>&mu; wet, local</th>" : "") << "</tr>";
@@ -71,7 +110,9 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
         << fmt(num(j["wet"]["local"]["speeds"][i]["mu"])) << "</td>";
     o << "</tr>";
   }
-  o << "</table>\n<p>Checks:</p><ul>";
+  o << "</table>\n";
+  if (j.contains("water_film")) o << film_html(j["water_film"], chart_dir);
+  o << "<p>Checks:</p><ul>";
   for (const auto& c : j["validity"]["checks"])
     o << "<li class=\"" << (c.value("passed", false) ? "ok" : "flag") << "\">" << escape(c.value("check", "")) << ": "
       << escape(c.value("detail", "")) << "</li>";

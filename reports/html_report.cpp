@@ -19,6 +19,7 @@
 #include "reports/html_parts.hpp"
 #include "reports/sweep_outputs.hpp"
 #include "reports/plot.hpp"
+#include "reports/skid_speed_section.hpp"
 #include "wetroad/version.hpp"
 
 namespace wr {
@@ -195,7 +196,7 @@ struct PredictedSeries {
 };
 
 double ifi_route_sn(double mu_low, double mpd_mm) {
-  const double sp = 14.2 + 89.7 * mpd_mm;
+  const double sp = piarc_speed_constant(mpd_mm);
   return 100 * mu_low * std::exp(-(kSkidSpeed - 20) / sp);
 }
 
@@ -227,8 +228,12 @@ std::vector<PredictedSeries> predicted_series(const std::string& file, const nlo
   std::vector<PredictedSeries> out;
   if (hysteresis) {
     const std::string flash = sc.value("flash_temperature", false) ? "flash temperature on" : "isothermal";
-    out.push_back({"hysteresis, 100 mu at " + fmt(num(sc["speeds"][0]), "%.3g") + " m/s (" + flash + ")" + which, true, {}});
-    out.push_back({"hysteresis, IFI route" + which, true, {}});
+    const bool film = sc.contains("film") && sc["film"].is_object();
+    const std::string film_label = film ? ", under a " + fmt(1e3 * num(sc["film"]["water_film"]), "%.3g") + " mm film (" +
+                                              sc["film"].value("test", std::string("?")) + ")"
+                                        : ", drained road (no film)";
+    out.push_back({"hysteresis, 100 mu at " + fmt(num(sc["speeds"][0]), "%.3g") + " m/s" + film_label + " (" + flash + ")" + which, true, {}});
+    out.push_back({"hysteresis, IFI route (comparison)" + which, true, {}});
   } else {
     out.push_back({"elastostatic 100 mu (" + sc.value("model", std::string("?")) + "), not a skid number" + which, false, {}});
   }
@@ -248,9 +253,10 @@ std::string skid_section(const ReportInput& in, const std::string& chart_dir) {
   std::ostringstream o;
   o << "<h2>Skid number against mean profile depth</h2>\n"
        "<p>Predicted SN40R (ASTM E274, locked wheel at 64 km/h on the wetted road) from the hysteresis model: "
-       "SN40R = 100 &mu; at 17.9 m/s (Persson's theory with the sealing of the pools, <code>--model hysteresis</code>), and "
-       "by the IFI route: the model's low-speed &mu; at 20 km/h carried to 64 km/h with the speed constant "
-       "Sp = 14.2 + 89.7 MPD (ASTM E1960). Each point is the wet road a skid tester leaves: the surface at its "
+       "SN40R = 100 &mu; at 17.9 m/s (Persson's theory with the sealing of the pools, <code>--model hysteresis</code>; "
+       "under the test's water film when the sweep ran with one, the default: the film's squeeze-out at speed), the "
+       "prediction; and, as a labelled comparison, the IFI route: the model's &mu; at 20 km/h carried to 64 km/h with "
+       "the speed constant Sp = 14.2 + 89.7 MPD (ASTM E1960; why the two differ: the section on wet friction at speed). Each point is the wet road a skid tester leaves: the surface at its "
        "drained limit with the pools sealed (local model; for a coverage sweep its largest drained coverage). The elastostatic &mu; of a contact-model sweep is the FEM's interlocking "
        "resistance of a frictionless block, a different mechanism: it is shown as its own series and is not a skid "
        "number. MPD of the dry surface per ISO 13473-1.</p>\n";
@@ -394,7 +400,7 @@ void write_html_report(const std::string& path, const ReportInput& in) {
         << figure(files[2], "Mean depth of the water pools.")
         << figure(files[3], "Radial PSD of the wet surfaces: pools flatten the texture (thesis Figure 5.26).");
     }
-    if (!in.sweeps.empty()) o << skid_section(in, charts);
+    if (!in.sweeps.empty()) o << skid_section(in, charts) << skid_speed_section(in.sweeps, charts);
     o << "</body></html>\n";
   } catch (...) {
     std::filesystem::remove_all(charts);
