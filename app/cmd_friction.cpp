@@ -21,7 +21,7 @@ namespace wr::app {
 namespace {
 
 struct FrictionCli {
-  std::string input, wet, compound, json, out, plot, plot_q1, test = "e274-ribbed";
+  std::string input, wet, compound, json, out, plot, plot_q1, plot_squeeze, test = "e274-ribbed";
   double water_film = 0;
   bool no_film = false;
   CLI::Option* film_opt = nullptr;
@@ -75,6 +75,31 @@ PlotSpec curve_plot(const FrictionRun& r, const FrictionScene& s) {
     }
     p.series.push_back(ps);
   }
+  return p;
+}
+
+// u(t) and the asperities' load share at the test's speed, with the time under the tyre marked.
+PlotSpec squeeze_plot(const SkidCurve& c, const FilmScene& f, double pressure) {
+  PlotSpec p;
+  char kmh[32];
+  std::snprintf(kmh, sizeof kmh, "%.0f", 3.6 * f.test.slip_speed);
+  p.title = "squeeze-out of a " + number_text(1e3 * f.test.water_film) + " mm film at " + kmh + " km/h (" + f.test.name +
+            "); vertical line: time under the tyre";
+  p.xlabel = "time after the element enters the patch t (s)";
+  p.ylabel = "mean separation (mm), load share";
+  p.logx = true;
+  PlotSeries u{"mean separation u (mm)", {}, {}, "lines", {}}, share{"asperities' load share p_c / sigma0", {}, {}, "lines", {}};
+  double umax = 0;
+  for (const SqueezeState& st : c.squeeze_at_test) {
+    if (st.t <= 0) continue;
+    u.x.push_back(st.t);
+    u.y.push_back(1e3 * st.separation);
+    share.x.push_back(st.t);
+    share.y.push_back(st.asperity_pressure / pressure);
+    umax = std::max(umax, 1e3 * st.separation);
+  }
+  PlotSeries patch{"time under the tyre Lc / v", {c.at_test.patch_time, c.at_test.patch_time}, {0.0, std::max(1.0, umax)}, "lines", {}};
+  p.series = {u, share, patch};
   return p;
 }
 
@@ -140,7 +165,9 @@ int run_friction_command(const FrictionCli& c) {
   outputs.input(c.wet);
   outputs.input(c.compound);
   const std::string json_path = outputs.add("--json", c.json), out_path = outputs.add("--out", c.out),
-                    plot_path = outputs.add("--plot", c.plot), plot_q1_path = outputs.add("--plot-q1", c.plot_q1);
+                    plot_path = outputs.add("--plot", c.plot), plot_q1_path = outputs.add("--plot-q1", c.plot_q1),
+                    plot_squeeze_path = outputs.add("--plot-squeeze", c.plot_squeeze);
+  if (!plot_squeeze_path.empty() && c.no_film) throw InputError("--plot-squeeze", "charts the film's squeeze-out: not with --no-film");
   FrictionScene s;
   s.compound_path = c.compound.empty() ? default_compound_path() : c.compound;
   s.compound = read_compound_json(s.compound_path);
@@ -220,6 +247,7 @@ int run_friction_command(const FrictionCli& c) {
     p.series.push_back(ps);
     write_svg_plot(plot_q1_path, p);
   }
+  if (!plot_squeeze_path.empty()) write_svg_plot(plot_squeeze_path, squeeze_plot(*r.film, *s.film, s.options.pressure));
   outputs.commit();
   if (!c.quiet) print_run(r, s, q1_scan);
   return 0;
@@ -268,6 +296,8 @@ Command add_friction(CLI::App& root) {
                 "(keys: docs/file-formats.md)")
       ->type_name("FILE")
       ->capture_default_str();
+  s->add_option("--plot-squeeze", c->plot_squeeze, "chart the film's mean separation and load share against time at the test's speed as SVG")
+      ->type_name("OUTPUT");
   s->add_flag("--no-film", c->no_film, "no water film: only the hysteresis friction of the drained road");
   s->add_option("--threads", c->threads, "worker threads over speeds (default: all)")->check(CLI::NonNegativeNumber);
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");

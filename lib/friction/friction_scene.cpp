@@ -170,7 +170,11 @@ nlohmann::json skid_curve_json(const SkidCurve& c, const FilmScene& film, double
   nlohmann::json speeds = nlohmann::json::array(), skid = nlohmann::json::array();
   for (const FilmPoint& p : c.points) speeds.push_back(film_point_json(p));
   for (const FilmPoint& p : c.skid) skid.push_back(film_point_json(p));
+  nlohmann::json sq = nlohmann::json::array();
+  for (const SqueezeState& st : c.squeeze_at_test)
+    sq.push_back({{"t", st.t}, {"separation", st.separation}, {"asperity_pressure", st.asperity_pressure}, {"contact", st.contact}});
   return {{"test", film.test.name},
+          {"squeeze_at_test", sq},
           {"source", film.test.source},
           {"patch_length", film.test.patch_length},
           {"drainage_length", film.test.drainage_length},

@@ -103,7 +103,8 @@ std::vector<std::pair<double, double>> mu_against_q1(const FrictionRun& r, const
 nlohmann::json friction_curve_json(const FrictionCurve& c);
 // {test, source, patch_length, drainage_length, slip_speed, water_film, viscosity, critical_contact,
 //  sn, sp_kmh (null: mu does not fall with speed), sp_fit_rms, fr60, hydroplaning_kmh (null: none),
-//  at_test {...}, speeds [...], skid [...]}, each point {v, mu, mu_hysteresis, mu_viscous,
+//  at_test {...}, squeeze_at_test [{t, separation, asperity_pressure, contact}] (u(t) at the
+//  test's speed), speeds [...], skid [...]}, each point {v, mu, mu_hysteresis, mu_viscous,
 //  load_share, patch_time, drain_time, contact_time, equilibrium_separation, final_separation, trapped}.
 nlohmann::json skid_curve_json(const SkidCurve& c, const FilmScene& film, double temperature);
 // {model: "hysteresis", mechanism, valid, checks: [{check, passed, detail}]}.

@@ -37,6 +37,12 @@ SqueezeHistory squeeze_at(const LoadSeparation& ls, const FrictionOptions& opt, 
 
 }  // namespace
 
+SqueezeHistory film_squeeze(const RoughnessSpectrum& psd, const Compound& compound, const FrictionOptions& opt,
+                            const FilmScene& film, double v) {
+  const LoadSeparation ls(psd, compound, v, opt.temperature, opt.points_per_decade);
+  return squeeze_at(ls, opt, film);
+}
+
 FilmPoint film_friction(const RoughnessSpectrum& psd, const Compound& compound, const FrictionOptions& opt,
                         const FilmScene& film, double v, double mu_h) {
   const LoadSeparation ls(psd, compound, v, opt.temperature, opt.points_per_decade);
@@ -118,6 +124,10 @@ SkidCurve skid_curve(const RoughnessSpectrum& psd, const Compound& compound, con
     if (p.mu > 0) s_kmh.push_back(p.v * kKmh), mu.push_back(p.mu);
   if (s_kmh.size() >= 2) std::tie(c.sp_kmh, c.sp_fit_rms) = fit_speed_constant(s_kmh, mu);
   c.hydroplaning_kmh = hydroplaning_speed(psd, compound, opt, film);
+  const SqueezeHistory h = film_squeeze(psd, compound, opt, film, film.test.slip_speed);
+  const std::size_t n = h.nodes().size(), stride = (n + 199) / 200;
+  for (std::size_t k = 0; k < n; k += stride) c.squeeze_at_test.push_back(h.nodes()[k]);
+  if (n > 0 && (n - 1) % stride != 0) c.squeeze_at_test.push_back(h.nodes().back());
   return c;
 }
 

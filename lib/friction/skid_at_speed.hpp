@@ -31,6 +31,7 @@
 #include "lib/friction/compound.hpp"
 #include "lib/friction/hysteresis_friction.hpp"
 #include "lib/friction/roughness_spectrum.hpp"
+#include "lib/friction/squeeze_out.hpp"
 #include "lib/friction/tyre_test.hpp"
 
 namespace wr {
@@ -63,11 +64,16 @@ struct SkidCurve {
   double sp_fit_rms = 0;              // rms of the ln mu residuals of the exponential fit
   double fr60 = 0;                    // mu at 60 km/h
   double hydroplaning_kmh = std::numeric_limits<double>::infinity();
+  std::vector<SqueezeState> squeeze_at_test;  // u(t) at the test's slip speed, <= 200 nodes
 };
 
 // The squeeze-out and patch average at one speed, with mu_h the hysteresis friction there.
 FilmPoint film_friction(const RoughnessSpectrum& psd, const Compound& compound, const FrictionOptions& opt,
                         const FilmScene& film, double v, double mu_h);
+
+// The squeeze-out history of the film at speed v (m/s).
+SqueezeHistory film_squeeze(const RoughnessSpectrum& psd, const Compound& compound, const FrictionOptions& opt,
+                            const FilmScene& film, double v);
 
 // The whole curve: mu_h from `hysteresis` (v -> mu_h(v), e.g. the hysteresis model on the dry
 // or the sealed wet spectrum), evaluated at the scene's speeds and the skid speeds, in parallel
