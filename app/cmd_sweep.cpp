@@ -418,6 +418,16 @@ void print_roughness_table(const nlohmann::json& sweep) {
                 cell(100 * v(r["mu_peak"]["cov"]), "%.1f%%", 8).c_str(), cell(v(r["area_at_peak"]["mean"]), "%.4f", 9).c_str(),
                 cell(v(r["area_normal"]["mean"]), "%.4f", 9).c_str(), cell(v(r["kappa"]["mean"]), "%.3f", 8).c_str(),
                 cell(1e3 * v(r["h0"]["mean"]), "%.4f", 8).c_str(), r["mu_peak"]["n"].get<int>(), r["failed"].get<int>());
+  if (!sweep["table"].empty() && sweep["table"][0].contains("sn") && sweep["table"][0]["sn"]["n"].get<int>() > 0) {
+    std::printf("  wet at speed (the test's film): skid number and speed constant (mean over realizations)\n");
+    std::printf("  %-20s %9s %9s %8s %11s %11s\n", "surfaces", "MPD [mm]", "SN", "+-95%", "Sp [km/h]", "E1960 Sp");
+    for (const auto& r : sweep["table"]) {
+      const double mpd = 1e3 * v(r["mpd"]["mean"]);
+      std::printf("  %-20s %s %s %s %s %s\n", r["label"].get<std::string>().c_str(), cell(mpd, "%.3f", 9).c_str(),
+                  cell(v(r["sn"]["mean"]), "%.1f", 9).c_str(), cell(v(r["sn"]["ci95"]), "%.2g", 8).c_str(),
+                  cell(v(r["sp_kmh"]["mean"]), "%.0f", 11).c_str(), cell(14.2 + 89.7 * mpd, "%.1f", 11).c_str());
+    }
+  }
   if (!sweep["thesis"].empty()) {
     std::printf("  the thesis (Tables D.1-D.3, C.1; 300 x 300, dGamma = dtheta/2, uz 9 mm; A/A0 is its A'):\n");
     for (const auto& t : sweep["thesis"])

@@ -43,7 +43,7 @@ const SweepTableLayout& coverage_layout() {
 
 const SweepTableLayout& roughness_layout() {
   static const SweepTableLayout l{"wetroad roughness sweep", "value",
-                                  {"h0", "rms_slope", "mu_peak", "area_at_peak", "area_normal", "kappa"}};
+                                  {"h0", "rms_slope", "mpd", "mu_peak", "area_at_peak", "area_normal", "kappa", "sn", "sp_kmh"}};
   return l;
 }
 

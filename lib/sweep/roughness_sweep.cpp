@@ -189,7 +189,7 @@ nlohmann::json roughness_table(const std::vector<nlohmann::json>& runs) {
   for (const auto& r : runs) by_value[r["value_index"].get<int>()].push_back(&r);
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& [vi, list] : by_value) {
-    std::vector<double> mu, ap, an, kappa, h0, slope;
+    std::vector<double> mu, ap, an, kappa, h0, slope, mpd, sn, sp;
     std::vector<int> indices;
     int failed = 0;
     for (const nlohmann::json* r : list) {
@@ -205,6 +205,13 @@ nlohmann::json roughness_table(const std::vector<nlohmann::json>& runs) {
       if ((*r)["quartic"].is_object()) kappa.push_back((*r)["quartic"]["kappa"].get<double>());
       h0.push_back((*r)["h0"].get<double>());
       slope.push_back((*r)["rms_slope"].get<double>());
+      if ((*r).contains("mpd") && (*r)["mpd"].is_number()) mpd.push_back((*r)["mpd"].get<double>());
+      // the wet-at-speed model's skid number and speed constant (hysteresis sweeps with a film);
+      // Sp is absent (null) where friction does not fall with speed
+      if (c.contains("sp_kmh")) {
+        sn.push_back(c["sn"].get<double>());
+        if (c["sp_kmh"].is_number()) sp.push_back(c["sp_kmh"].get<double>());
+      }
     }
     std::sort(indices.begin(), indices.end());
     const nlohmann::json& first = *list.front();
@@ -217,7 +224,10 @@ nlohmann::json roughness_table(const std::vector<nlohmann::json>& runs) {
                     {"area_normal", sample_statistics(an)},
                     {"kappa", sample_statistics(kappa)},
                     {"h0", sample_statistics(h0)},
-                    {"rms_slope", sample_statistics(slope)}});
+                    {"rms_slope", sample_statistics(slope)},
+                    {"mpd", sample_statistics(mpd)},
+                    {"sn", sample_statistics(sn)},
+                    {"sp_kmh", sample_statistics(sp)}});
   }
   return rows;
 }
