@@ -103,7 +103,9 @@ TEST(LoadSeparation, ElasticContactAreaIsPerssonsErf) {
     const double u = ls.separation(p);
     EXPECT_LT(u, last);
     last = u;
-    if (u > 0) EXPECT_NEAR(ls.pressure_at(u) / p, 1.0, 1e-8) << "p " << p << " u " << u;  // u = 0: full contact
+    if (u > 0) {  // u = 0: full contact
+      EXPECT_NEAR(ls.pressure_at(u) / p, 1.0, 1e-8) << "p " << p << " u " << u;
+    }
   }
   // Separated surfaces: u(p) = u* - gamma sqrt(pi) (int q^2 C w dq) ln p + ..., the exponential
   // law; its slope in ln p, at two small pressures, is the same to 1e-3.

@@ -173,6 +173,13 @@ double get_number(const nlohmann::json& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
 
+// The friction the ratios compare: the drained road's (the hysteresis model under a film keeps it
+// as mu_drained beside its friction at speed, mu_peak), so that mu_ratio is the sealing's effect
+// of the coverage alone (the thesis's Figure 5.25) and comparable with mu_ratio_homogeneous.
+double ratio_friction(const nlohmann::json& contact) {
+  return contact.contains("mu_drained") ? contact["mu_drained"].get<double>() : contact["mu_peak"].get<double>();
+}
+
 }  // namespace
 
 nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
@@ -180,7 +187,7 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
   std::map<int, double> mu_dry;
   for (const auto& r : runs)
     if (r.value("target", -1.0) == 0 && r.value("status", "") == "ok")
-      mu_dry[r["realization"].get<int>()] = r["contact"]["mu_peak"].get<double>();
+      mu_dry[r["realization"].get<int>()] = ratio_friction(r["contact"]);
   std::map<double, std::vector<const nlohmann::json*>> by_target;
   for (const auto& r : runs) by_target[r["target"].get<double>()].push_back(&r);
   nlohmann::json rows = nlohmann::json::array();
@@ -196,11 +203,10 @@ nlohmann::json coverage_table(const std::vector<nlohmann::json>& runs) {
         continue;
       }
       water = (*r)["water"].get<std::string>();
-      const double m = (*r)["contact"]["mu_peak"].get<double>();
-      mu.push_back(m);
+      mu.push_back((*r)["contact"]["mu_peak"].get<double>());
       // A ratio to a dry friction that is not positive means nothing (a scene without friction).
       const auto d = mu_dry.find((*r)["realization"].get<int>());
-      if (d != mu_dry.end() && d->second > 0) ratio.push_back(m / d->second);
+      if (d != mu_dry.end() && d->second > 0) ratio.push_back(ratio_friction((*r)["contact"]) / d->second);
       if (d != mu_dry.end() && d->second > 0 && (*r)["contact"].contains("mu_homogeneous"))
         ratio_hom.push_back((*r)["contact"]["mu_homogeneous"].get<double>() / d->second);
       area_peak.push_back(get_number((*r)["contact"], "area_at_peak"));
