@@ -85,6 +85,13 @@ LinearSolve solve_amg(const Eigen::SparseMatrix<double>& a, const Eigen::MatrixX
   PC pc = nullptr;
   check(KSPGetPC(o.ksp, &pc), "KSPGetPC");
   check(PCSetType(pc, PCGAMG), "PCSetType");
+  // Drop weak couplings when aggregating: next to a contact line g^3 falls by decades within a
+  // cell or two, and aggregates across those faces made CG's iterations grow with the grid (57,
+  // 334, 1467 at 256^2 ... 1024^2 with PETSc's default 0). Measured on a 512^2 elastic gap
+  // (sigma* 0.1): threshold 0: 145 iterations 6.5 s; 0.02: 42, 2.8 s; 0.05: 35, 3.4 s; 0.1: 101;
+  // 0.2: 738 (docs/performance.md). -flow_pc_gamg_threshold overrides it.
+  PetscReal threshold[] = {0.02};
+  check(PCGAMGSetThreshold(pc, threshold, 1), "PCGAMGSetThreshold");
   // The true residual, so that the tolerance means the same as CHOLMOD's reported residual.
   check(KSPSetNormType(o.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
   check(KSPSetTolerances(o.ksp, tolerance, 0.0, PETSC_DEFAULT, 10000), "KSPSetTolerances");
