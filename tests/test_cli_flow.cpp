@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -19,6 +20,7 @@ namespace fs = std::filesystem;
 class FlowCli : public Cli {
  protected:
   void SetUp() override {
+    Cli::SetUp();  // the scratch folder
     const CliRun r = run("synth --size 64 --dx 1e-4 --h0 1e-5 --hurst 0.8 --seed 2 -o " + path("s.h5"));
     ASSERT_EQ(r.code, 0) << r.err;
   }
@@ -80,7 +82,9 @@ TEST_F(FlowCli, RigidFlatAtAContactFractionOrSeparation) {
   EXPECT_NEAR(j["area_fraction"].get<double>(), 1229.0 / 4096, 1e-12);  // round(0.3 N) highest points
   EXPECT_TRUE(j["mean_pressure"].is_null());
   const double u = j["mean_gap"].get<double>();
-  ASSERT_EQ(run("flow " + path("s.h5") + " --rigid --separation " + std::to_string(u) + " --json " + path("u.json")).code, 0);
+  char sep[32];
+  std::snprintf(sep, sizeof sep, "%.17g", u);
+  ASSERT_EQ(run("flow " + path("s.h5") + " --rigid --separation " + sep + " --json " + path("u.json")).code, 0);
   EXPECT_NEAR(read_json("u.json")["mean_gap"].get<double>() / u, 1.0, 1e-9);
   // Past the percolation threshold nothing flows: K = 0 exactly.
   ASSERT_EQ(run("flow " + path("s.h5") + " --rigid --contact-fraction 0.9 --json " + path("c.json")).code, 0);
