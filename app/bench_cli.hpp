@@ -31,5 +31,7 @@ BenchEntry add_mesh_convergence_bench(CLI::App& bench);  // app/bench_cli_contac
 BenchEntry add_hertz_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_spot_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_obstacle_rays_bench(CLI::App& bench);  // app/bench_cli_geometry.cpp
+BenchEntry add_flow_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
+BenchEntry add_percolation_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
 
 }  // namespace wr::app

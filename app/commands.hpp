@@ -21,5 +21,6 @@ Command add_sweep_coverage(CLI::App& root);
 Command add_sweep_roughness(CLI::App& root);
 Command add_report(CLI::App& root);
 Command add_friction(CLI::App& root);
+Command add_flow(CLI::App& root);
 
 }  // namespace wr::app

@@ -52,4 +52,30 @@ void write_vtu_file(const std::string& path, const std::vector<double>& points,
   if (!f) throw InputError(path, "write failed (disk full?)");
 }
 
+void write_vti_file(const std::string& path, std::size_t nx, std::size_t ny, double dx, double dy,
+                    const std::vector<VtiArray>& arrays) {
+  for (const VtiArray& a : arrays)
+    if (a.values->size() != nx * ny) throw std::invalid_argument("write_vti_file: array " + a.name + " has the wrong size");
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw InputError(path, "cannot open for writing");
+  f.precision(17);  // the spacings exactly
+  f << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+    << "<ImageData WholeExtent=\"0 " << nx - 1 << " 0 " << ny - 1 << " 0 0\" Origin=\"0 0 0\" Spacing=\"" << dx << " "
+    << dy << " 1\">\n<Piece Extent=\"0 " << nx - 1 << " 0 " << ny - 1 << " 0 0\">\n<PointData>\n";
+  std::uint64_t pos = 0;
+  for (const VtiArray& a : arrays) {
+    f << "<DataArray type=\"Float64\" Name=\"" << a.name << "\" format=\"appended\" offset=\"" << pos << "\"/>\n";
+    pos += sizeof(std::uint64_t) + a.values->size() * sizeof(double);
+  }
+  f << "</PointData>\n</Piece>\n</ImageData>\n<AppendedData encoding=\"raw\">\n_";
+  for (const VtiArray& a : arrays) {
+    const std::uint64_t bytes = a.values->size() * sizeof(double);
+    f.write(reinterpret_cast<const char*>(&bytes), sizeof bytes);
+    f.write(reinterpret_cast<const char*>(a.values->data()), std::streamsize(bytes));
+  }
+  f << "\n</AppendedData>\n</VTKFile>\n";
+  if (!f) throw InputError(path, "write failed (disk full?)");
+}
+
 }  // namespace wr
