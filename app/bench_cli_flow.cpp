@@ -7,6 +7,7 @@
 #include "bench/bench_flow.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "reports/plot.hpp"
 
 namespace wr::app {
 namespace {
@@ -44,8 +45,30 @@ int run_flow_bench(const FlowBenchCli& c) {
 
 struct PercolationBenchCli {
   bench::PercolationSetup setup;
-  std::string json;
+  std::string json, plot;
 };
+
+// The map's conductance (mean of K_xx and K_yy) and the effective medium's against A/A0, per
+// ladder (logarithmic K; zeros are left out).
+void write_ladder_plot(const std::string& path, const nlohmann::json& r) {
+  PlotSpec p{"flow conductance against the contact area: the map (Reynolds) and the effective medium",
+             "contact area fraction A/A0", "K (m^3)", false, true, {}};
+  for (const auto& m : r["maps"]) {
+    if (!m.contains("ladder")) continue;
+    char h[32];
+    std::snprintf(h, sizeof h, "H %.1f", m["hurst"].get<double>());
+    PlotSeries map{std::string("map, ") + h, {}, {}, "linespoints", {}}, emt{std::string("effective medium, ") + h, {}, {}, "linespoints", {}};
+    for (const auto& l : m["ladder"]) {
+      const double a = l["area_fraction"].get<double>(), k = 0.5 * (l["kxx"].get<double>() + l["kyy"].get<double>());
+      const double e = l["k_effective_medium"].get<double>();
+      if (k > 0) map.x.push_back(a), map.y.push_back(k);
+      if (e > 0) emt.x.push_back(a), emt.y.push_back(e);
+    }
+    p.series.push_back(map);
+    p.series.push_back(emt);
+  }
+  write_svg_plot(path, p);
+}
 
 // "lo-hi" midpoint of a bracket [lo, hi].
 double mid(const nlohmann::json& b) { return 0.5 * (b[0].get<double>() + b[1].get<double>()); }
@@ -78,17 +101,19 @@ int run_percolation_bench(const PercolationBenchCli& c) {
     if (!m.contains("ladder")) continue;
     std::printf("\n  conductance ladder, H %.2f seed %llu (K_xx, K_yy in m^3; flow factor K / (mean gap^3 / 12))\n",
                 m["hurst"].get<double>(), m["seed"].get<unsigned long long>());
-    std::printf("  %8s %10s %8s %12s %12s %12s %9s %9s %7s\n", "sigma*", "p (Pa)", "A/A0", "mean gap m", "K_xx", "K_yy",
-                "phi_xx", "phi_yy", "flow s");
+    std::printf("  %8s %10s %8s %12s %12s %12s %9s %9s %12s %9s %7s\n", "sigma*", "p (Pa)", "A/A0", "mean gap m", "K_xx", "K_yy",
+                "phi_xx", "phi_yy", "K_eff.med.", "EM/map", "flow s");
     for (const auto& l : m["ladder"]) {
       const double u = l["mean_gap"].get<double>(), c3 = u * u * u / 12;
-      std::printf("  %8.3f %10.4g %8.4f %12.4e %12.4e %12.4e %9.4f %9.4f %7.2f\n", l["sigma_star"].get<double>(),
+      const double km = 0.5 * (l["kxx"].get<double>() + l["kyy"].get<double>()), ke = l["k_effective_medium"].get<double>();
+      std::printf("  %8.3f %10.4g %8.4f %12.4e %12.4e %12.4e %9.4f %9.4f %12.4e %9.3g %7.2f\n", l["sigma_star"].get<double>(),
                   l["pressure"].get<double>(), l["area_fraction"].get<double>(), u, l["kxx"].get<double>(),
-                  l["kyy"].get<double>(), l["kxx"].get<double>() / c3, l["kyy"].get<double>() / c3,
-                  l["flow_s"].get<double>());
+                  l["kyy"].get<double>(), l["kxx"].get<double>() / c3, l["kyy"].get<double>() / c3, ke,
+                  km > 0 ? ke / km : NAN, l["flow_s"].get<double>());
     }
   }
   if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
+  if (!c.plot.empty()) write_ladder_plot(c.plot, r);
   return 0;
 }
 
@@ -129,7 +154,8 @@ BenchEntry add_percolation_bench(CLI::App& bench) {
   s->add_option("--contact-tol", st.contact_tolerance, "the spectral solver's tolerance")->check(CLI::Range(1e-14, 1e-2))->capture_default_str();
   s->add_option("--threads", st.threads, "FFT threads (default: all cores)")->check(CLI::NonNegativeNumber);
   s->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
-  return {s, [o] { return run_percolation_bench(*o); }, &o->json, nullptr, nullptr};
+  s->add_option("--plot", o->plot, "chart the map's and the effective medium's conductance against A/A0 (SVG)")->type_name("OUTPUT");
+  return {s, [o] { return run_percolation_bench(*o); }, &o->json, &o->plot, nullptr};
 }
 
 }  // namespace wr::app

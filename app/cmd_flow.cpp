@@ -13,6 +13,7 @@
 #include "lib/core/provenance.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/flow/contact_gap.hpp"
+#include "lib/flow/effective_medium.hpp"
 #include "lib/flow/thin_film_flow.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "lib/io/output_set.hpp"
@@ -96,6 +97,30 @@ ContactGap rigid_gap(const FlowCli& c, const LoadedSurface& s) {
   return g;
 }
 
+// The mean-field rung beside the map's answer (lib/flow/effective_medium.hpp): Bruggeman's medium
+// from the contact fraction, the mean gap and the surface's rms height, against the mean of the
+// map's kxx and kyy. Within a factor of 2 the cheap rung answers the scene's questions (the
+// squeeze-out's times scale with 1/K).
+struct MeanField {
+  double k = 0, ratio = 0, critical_contact = 0, rms = 0;
+  bool suffices = false;
+};
+
+MeanField mean_field(const HeightMap& surface, const FlowConductance& k, double area, bool rigid) {
+  MeanField m;
+  double mean = 0, sq = 0;
+  for (double h : surface.h) mean += h;
+  mean /= static_cast<double>(surface.size());
+  for (double h : surface.h) sq += (h - mean) * (h - mean);
+  m.rms = std::sqrt(sq / static_cast<double>(surface.size()));
+  m.critical_contact = rigid ? kRigidPercolationContact : kElasticPercolationContact;
+  m.k = effective_medium_conductance({area, k.mean_gap, m.rms}, m.critical_contact);
+  const double map = 0.5 * (k.kxx + k.kyy);
+  m.ratio = map > 0 ? m.k / map : INFINITY;
+  m.suffices = m.ratio >= 0.5 && m.ratio <= 2;
+  return m;
+}
+
 nlohmann::json flow_json(const FlowConductance& k, const ContactGap& g, double area) {
   const double u = k.mean_gap, plates = u * u * u / 12;
   auto ratio = [&](double v) { return plates > 0 ? nlohmann::json(v / plates) : nlohmann::json(nullptr); };
@@ -175,6 +200,17 @@ int run_flow(const FlowCli& c) {
   const FlowConductance k = thin_film_conductance(g.gap, fo, c.vti.empty() ? nullptr : &field);
   timings["flow"] = seconds_since(t);
   const double area = contact_fraction(g.gap);
+  // No flow path in either direction: the conductance the command exists for is zero, and the
+  // film the tread presses stays in closed pools. Refused like any question without an answer.
+  if (!k.percolates_x && !k.percolates_y) {
+    char why[200];
+    std::snprintf(why, sizeof why,
+                  "no drainage in any direction: the free area percolates in neither x nor y at A/A0 = %.3f (the water "
+                  "stays in closed pools, K = 0); give a lower %s",
+                  area, c.rigid ? "--contact-fraction or a larger --separation" : "--pressure");
+    throw InputError(c.surface, why);
+  }
+  const MeanField mf = mean_field(s.map, k, area, c.rigid);
   t = std::chrono::steady_clock::now();
   if (!vti_path.empty()) write_vti(vti_path, g, field);
   Provenance prov;
@@ -193,10 +229,19 @@ int run_flow(const FlowCli& c) {
   timings["total"] = seconds_since(t0);
   prov.timings = timings;
   nlohmann::json j = flow_json(k, g, area);
+  j["effective_medium"] = {{"conductance", mf.k}, {"ratio_to_map", mf.ratio}, {"critical_contact", mf.critical_contact},
+                           {"rms_height", mf.rms}, {"suffices", mf.suffices}};
   j["provenance"] = prov.to_json();
   if (!json_path.empty()) write_text_atomically(json_path, j.dump(2) + "\n");
   outputs.commit();
-  if (!c.quiet) print_result(c, s, g, k, area, timings);
+  if (!c.quiet) {
+    print_result(c, s, g, k, area, timings);
+    std::printf("  mean field       K %.4e m^3 (Bruggeman effective medium from A/A0, the mean gap and the map's rms %.3e m,\n"
+                "                   threshold A_c %.2f): %.2f x the map's; %s\n",
+                mf.k, mf.rms, mf.critical_contact, mf.ratio,
+                mf.suffices ? "within a factor 2, the mean-field rung suffices for this scene"
+                            : "off by more than a factor 2: this scene needs the map's flow");
+  }
   return 0;
 }
 

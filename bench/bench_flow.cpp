@@ -8,6 +8,7 @@
 
 #include "bench/bench_common.hpp"
 #include "lib/flow/contact_gap.hpp"
+#include "lib/flow/effective_medium.hpp"
 #include "lib/flow/thin_film_flow.hpp"
 #include "lib/spectral/normal_contact.hpp"
 #include "roads/height_stats.hpp"
@@ -171,13 +172,18 @@ nlohmann::json percolation_threshold(const PercolationSetup& st) {
                             {"rigid_y", {ry.first, ry.second}},
                             {"contact_solves", seen.size()}};
       if (si == 0) {  // the conductance ladder of this H's first map
+        // the mean-field rung beside it: Bruggeman's medium from A/A0, the mean gap and the map's rms
+        double rms = 0;
+        for (double h : map.h) rms += h * h;
+        rms = std::sqrt(rms / static_cast<double>(map.size()));
         nlohmann::json ladder = nlohmann::json::array();
         for (double s : st.ladder) {
           const ContactState c = solve_at(solver, map, slope, s, opt);
           const FlowConductance k = thin_film_conductance(c.gap, {});
           ladder.push_back({{"sigma_star", s}, {"pressure", pressure_of(s, slope)}, {"area_fraction", c.area},
                             {"mean_gap", c.mean_gap}, {"kxx", k.kxx}, {"kyy", k.kyy}, {"kxy", k.kxy},
-                            {"percolates_x", k.percolates_x}, {"percolates_y", k.percolates_y}, {"flow_s", k.wall_s}});
+                            {"percolates_x", k.percolates_x}, {"percolates_y", k.percolates_y}, {"flow_s", k.wall_s},
+                            {"k_effective_medium", effective_medium_conductance({c.area, c.mean_gap, rms})}});
         }
         row["ladder"] = ladder;
       }
