@@ -7,7 +7,8 @@
 # so that each FEM run takes seconds; contact forces along the obstacle's facet normals, see
 # docs/validation.md), a roughness sweep over the thesis's dataset A on 16 x 16 surfaces (its
 # surfaces' MPDs give the skid-number chart its points), the hysteresis friction mu(v) of tread
-# rubber on the dry and the drained wet surface (flash temperature on), the same model's coverage
+# rubber on the dry and the drained wet surface (flash temperature on) with the skid numbers under
+# ASTM E274's water film at 20-100 km/h, the water's flow through the contact on the map, the same model's coverage
 # and roughness sweeps (the skid-number prediction), and the HTML report of all of them.
 # Outputs land in build/demo/.
 set -eu
@@ -23,7 +24,9 @@ echo
 "$BIN" fill "$OUT/surface.h5" --limit -o "$OUT/wet-limit.h5" --json "$OUT/wet-limit.json"
 echo
 "$BIN" friction "$OUT/surface.h5" --wet "$OUT/wet-limit.h5" --flash-temperature --json "$OUT/friction.json" \
-  --out "$OUT/friction.h5" --plot "$OUT/friction.svg" --plot-q1 "$OUT/friction-q1.svg"
+  --out "$OUT/friction.h5" --plot "$OUT/friction.svg" --plot-q1 "$OUT/friction-q1.svg" --plot-squeeze "$OUT/squeeze.svg"
+echo
+"$BIN" flow "$OUT/surface.h5" --pressure 3e5 --json "$OUT/flow.json" --vti "$OUT/flow.vti"
 echo
 "$BIN" synth --size 40 --dx 1e-4 --h0 5e-5 --hurst 0.7 --q0-ratio 2 --seed 3 -o "$OUT/patch.h5" -q
 OMP_NUM_THREADS=1 "$BIN" contact --surface "$OUT/patch.h5" --problem shear --uz 1.2e-3 --ux 8e-4 --steps 2 --refine 1 \
@@ -54,7 +57,9 @@ echo
 echo "demo outputs in $OUT: surface.h5 (height map), analysis.json/.h5 (texture summary + PSD),"
 echo "  wet-30.h5 (30% water coverage), wet-limit.h5 (drained limit); 'wetroad analyze' reads the wet surfaces too;"
 echo "  contact.json/.h5/.vtu (shear test of a block on patch.h5: forces, mu, contact maps, deformed block)"
-echo "  friction.json/.h5/.svg (hysteresis mu(v) of tread rubber, dry and wet; friction-q1.svg: mu against the cut-off)"
+echo "  friction.json/.h5/.svg (hysteresis mu(v) of tread rubber, dry and wet, skid numbers under the E274 film;"
+echo "    friction-q1.svg: mu against the cut-off; squeeze.svg: the film's drainage against the time under the tyre)"
+echo "  flow.json/.vti (the water's thin-film flow through the contact's gap on the map; open the .vti in ParaView)"
 echo "  sweep.h5/.csv, sweep-charts/ (elastostatic friction against water coverage), roughness.h5/.csv (against h0),"
 echo "  sweep-hysteresis.h5/.csv, roughness-hysteresis.h5/.csv (hysteresis friction against coverage and h0),"
 echo "  report.html (mu(v), the sweeps and skid numbers against MPD; open it in a browser)"
