@@ -141,7 +141,7 @@ int run_friction(const FrictionBenchCli& c) {
   std::printf("  mu(v) under the E274 film, with flash temperature, its 17 skid speeds, Sp and hydroplaning speed\n"
               "    (mu_h included)                 %8.4f s  (SN %.1f, Sp %s km/h)\n",
               r["film_seconds"].get<double>(), r["film_sn"].get<double>(),
-              r["film_sp_kmh"].is_null() ? "none" : std::to_string(r["film_sp_kmh"].get<double>()).c_str());
+              r["film_sp_kmh"].is_null() ? "none" : std::to_string(std::lround(r["film_sp_kmh"].get<double>())).c_str());
   std::printf("  speed against accuracy (isothermal; error against 400 points per decade):\n");
   std::printf("    %18s %10s %18s\n", "points per decade", "seconds", "max rel. error");
   for (const auto& row : r["accuracy_ladder"])
