@@ -33,5 +33,6 @@ BenchEntry add_spot_bench(CLI::App& bench);  // app/bench_cli_contact.cpp
 BenchEntry add_obstacle_rays_bench(CLI::App& bench);  // app/bench_cli_geometry.cpp
 BenchEntry add_flow_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
 BenchEntry add_percolation_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
+BenchEntry add_squeeze_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
 
 }  // namespace wr::app

@@ -1,10 +1,12 @@
 // `wetroad bench flow` and `wetroad bench percolation`: the CLI of bench/bench_flow.hpp.
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
 
 #include "app/bench_cli.hpp"
 #include "bench/bench_flow.hpp"
+#include "bench/bench_squeeze.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
 #include "reports/plot.hpp"
@@ -117,7 +119,54 @@ int run_percolation_bench(const PercolationBenchCli& c) {
   return 0;
 }
 
+struct SqueezeBenchCli {
+  bench::SqueezeBenchSetup setup;
+  std::string json;
+};
+
+int run_squeeze_bench(const SqueezeBenchCli& c) {
+  const nlohmann::json r = bench::squeeze_rungs(c.setup);
+  std::printf("squeeze-out of a %.3g mm film at %.3g MPa, elastic rubber E %.3g MPa: the mean field (Persson's load-separation,\n"
+              "effective-medium flow) against the map (spectral contact's load-separation, Reynolds flow of its gap);\n"
+              "times in ms to 1 %% and 90 %% asperity load, mean load share over %.3g ms\n",
+              1e3 * c.setup.film, 1e-6 * c.setup.pressure, 1e-6 * c.setup.young, 1e3 * c.setup.patch_time);
+  std::printf("  %8s %6s | %9s %9s %7s %9s %7s | %9s %9s %7s %9s %7s\n", "h0 mm", "L mm", "t1% mf", "t90% mf", "share",
+              "u_eq um", "A_eq", "t1% map", "t90% map", "share", "u_eq um", "A_eq");
+  auto ms = [](const nlohmann::json& t) { return t.is_null() ? INFINITY : 1e3 * t.get<double>(); };
+  for (const auto& row : r["rows"]) {
+    const auto &m = row["mean_field"], &p = row["map"];
+    std::printf("  %8.3f %6.0f | %9.3g %9.3g %7.3f %9.1f %7.4f | %9.3g %9.3g %7.3f %9.1f %7.4f\n", 1e3 * row["h0"].get<double>(),
+                1e3 * row["drainage_length"].get<double>(), ms(m["t_first_contact"]), ms(m["t_drained"]),
+                m["load_share"].get<double>(), 1e6 * m["u_equilibrium"].get<double>(), m["area_equilibrium"].get<double>(),
+                ms(p["t_first_contact"]), ms(p["t_drained"]), p["load_share"].get<double>(), 1e6 * p["u_equilibrium"].get<double>(),
+                p["area_equilibrium"].get<double>());
+  }
+  if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
+
+BenchEntry add_squeeze_bench(CLI::App& bench) {
+  auto o = std::make_shared<SqueezeBenchCli>();
+  CLI::App* s = bench.add_subcommand("squeeze", "Squeeze-out of a film: the mean-field rung against the map (minute).");
+  s->footer(
+      "On default-scene surfaces (30 mm, H 0.7, q0 = 5 qL, q1 = Nyquist) of each --h0: the film's squeeze-out under a rib\n"
+      "(lib/friction/squeeze_out.hpp) with the mean field the skid model runs on (Persson's load-separation and the\n"
+      "effective medium, on the map's band) and with the map itself (the spectral half-space's mean gap, contact and\n"
+      "the Reynolds conductance of its gap over a ladder of loads), for the same elastic rubber.\n"
+      "Example: wetroad bench squeeze --h0 7.24e-5 3.02e-4");
+  bench::SqueezeBenchSetup& st = o->setup;
+  s->add_option("--h0", st.h0, "rms heights of the surfaces, m")->check(CLI::Range(1e-7, 1e-2))->capture_default_str();
+  s->add_option("--size", st.n, "grid points per side")->check(CLI::Range(16, 4096))->capture_default_str();
+  s->add_option("--seed", st.seed, "surface seed")->capture_default_str();
+  s->add_option("--E", st.young, "Young's modulus of the rubber, Pa")->check(CLI::Range(1e3, 1e12))->capture_default_str();
+  s->add_option("--pressure", st.pressure, "nominal pressure sigma0, Pa")->check(CLI::Range(1.0, 1e9))->capture_default_str();
+  s->add_option("--film", st.film, "water film, m")->check(CLI::Range(1e-9, 1e-2))->capture_default_str();
+  s->add_option("--threads", st.threads, "FFT threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  s->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
+  return {s, [o] { return run_squeeze_bench(*o); }, &o->json, nullptr, nullptr};
+}
 
 BenchEntry add_flow_bench(CLI::App& bench) {
   auto o = std::make_shared<FlowBenchCli>();

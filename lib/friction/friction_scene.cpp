@@ -50,6 +50,14 @@ std::vector<ValidityCheck> scene_checks(const FrictionRun& r, const FrictionScen
                               number_text(r.dry_spectrum.q_end) + " 1/m) carry " + number_text(100 * share) + " % of mu at 17.9 m/s"
                         : "no extrapolation: q1 = " + number_text(r.dry_spectrum.q_end) + " 1/m lies in the measured band",
                     false});
+  if (r.film) {
+    const double a = r.film->at_test.equilibrium_contact;
+    checks.push_back({"mean-field drainage valid", a <= kMeanFieldFlowMaxContact,
+                      "A/A0 " + number_text(a) + " at sigma0 and the test's speed (the effective medium's flow is within a "
+                      "factor 1.6 of the map's up to " + number_text(kMeanFieldFlowMaxContact) +
+                      "; above, near percolation, check the drainage with `wetroad flow`)",
+                      false});
+  }
   checks.push_back({"compound fitted to a measured master curve", !s.compound.synthetic,
                     s.compound.synthetic ? "SYNTHETIC compound \"" + s.compound.name + "\": trends, not a prediction for a real tyre"
                                          : "\"" + s.compound.name + "\" (" + s.compound.source + ")",
@@ -161,6 +169,7 @@ nlohmann::json film_point_json(const FilmPoint& p) {
           {"drain_time", finite_or_null(p.drain_time)},
           {"contact_time", finite_or_null(p.contact_time)},
           {"equilibrium_separation", p.equilibrium_separation},
+          {"equilibrium_contact", p.equilibrium_contact},
           {"final_separation", p.final_separation},
           {"trapped", p.trapped}};
 }

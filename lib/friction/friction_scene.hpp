@@ -105,7 +105,8 @@ nlohmann::json friction_curve_json(const FrictionCurve& c);
 //  sn, sp_kmh (null: mu does not fall with speed), sp_fit_rms, fr60, hydroplaning_kmh (null: none),
 //  at_test {...}, squeeze_at_test [{t, separation, asperity_pressure, contact}] (u(t) at the
 //  test's speed), speeds [...], skid [...]}, each point {v, mu, mu_hysteresis, mu_viscous,
-//  load_share, patch_time, drain_time, contact_time, equilibrium_separation, final_separation, trapped}.
+//  load_share, patch_time, drain_time, contact_time, equilibrium_separation, equilibrium_contact,
+//  final_separation, trapped}.
 nlohmann::json skid_curve_json(const SkidCurve& c, const FilmScene& film, double temperature);
 // {model: "hysteresis", mechanism, valid, checks: [{check, passed, detail}]}.
 nlohmann::json hysteresis_validity_json(const std::vector<ValidityCheck>& checks);

@@ -57,6 +57,7 @@ FilmPoint film_friction(const RoughnessSpectrum& psd, const Compound& compound, 
   p.drain_time = h.time_to_share(kDrainedShare);
   p.contact_time = h.time_to_share(kFirstContactShare);
   p.equilibrium_separation = ls.separation(opt.pressure);
+  p.equilibrium_contact = ls.contact_fraction(opt.pressure);
   p.final_separation = h.at(p.patch_time).separation;
   p.trapped = h.trapped();
   if (!std::isfinite(p.mu)) throw NumericalError("", "non-finite wet friction at v = " + number_text(v) + " m/s");

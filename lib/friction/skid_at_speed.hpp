@@ -36,6 +36,11 @@
 
 namespace wr {
 
+// The effective medium's conductance stays within a factor 1.6 of the map's up to this contact
+// fraction and drifts to 2.7 and beyond near the percolation threshold (docs/validation.md,
+// "The mean-field rung against the map"): above it the drain times need the map's flow.
+constexpr double kMeanFieldFlowMaxContact = 0.3;
+
 struct FilmScene {
   TyreTest test;              // patch, drainage length, slip speed; test.water_film is the film
   double critical_contact = 0.42;  // the effective medium's percolation threshold
@@ -51,6 +56,7 @@ struct FilmPoint {
   double drain_time = 0;      // s, until the asperities carry 90 % of the load (inf: never)
   double contact_time = 0;    // s, until they carry 1 % (the first contact)
   double equilibrium_separation = 0;  // m, u at sigma0
+  double equilibrium_contact = 0;     // A/A0 at sigma0 (Persson's, at q1)
   double final_separation = 0;        // m, u when the element leaves the patch
   bool trapped = false;       // the water stopped draining (the free area no longer percolates)
 };
