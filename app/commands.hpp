@@ -21,6 +21,7 @@ Command add_sweep_coverage(CLI::App& root);
 Command add_sweep_roughness(CLI::App& root);
 Command add_report(CLI::App& root);
 Command add_friction(CLI::App& root);
+Command add_compound(CLI::App& root);
 Command add_flow(CLI::App& root);
 
 }  // namespace wr::app

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
 
-  const std::vector<wr::app::Command> commands = {wr::app::add_synth(app), wr::app::add_analyze(app), wr::app::add_fill(app), wr::app::add_friction(app), wr::app::add_contact(app), wr::app::add_flow(app),
+  const std::vector<wr::app::Command> commands = {wr::app::add_synth(app), wr::app::add_analyze(app), wr::app::add_fill(app), wr::app::add_friction(app), wr::app::add_compound(app), wr::app::add_contact(app), wr::app::add_flow(app),
                                                   wr::app::add_sweep_coverage(app), wr::app::add_sweep_roughness(app),
                                                   wr::app::add_report(app),
                                                   wr::app::add_bench(app)};

@@ -32,14 +32,16 @@ std::string shell_quoted(const std::string& s) {
 
 // A title or label as a gnuplot literal. A line break would end the command (and let a file name
 // in a label write gnuplot commands), and the SVG is inlined into a UTF-8 page: controls become
-// blanks and bytes that are not UTF-8 U+FFFD (gnuplot escapes & < > itself).
+// blanks and bytes that are not UTF-8 U+FFFD (gnuplot escapes & < > itself). gnuplot 5.4 ends a
+// single-quoted label at a doubled quote (measured: a ylabel E'' written with the quotes doubled is
+// a syntax error), so an apostrophe is written as U+2019, which reads the same.
 std::string quoted_text(const std::string& s) {
   std::string t = "'";
   for (std::size_t i = 0; i < s.size();) {
     char32_t cp = 0;
     const std::size_t n = utf8_length_at(s, i, &cp);
     if (n == 0) t += "\xEF\xBF\xBD";
-    else if (cp == '\'') t += "''";
+    else if (cp == '\'') t += "\xE2\x80\x99";
     else if (is_control(cp)) t += ' ';
     else t.append(s, i, n);
     i += n == 0 ? 1 : n;
@@ -57,7 +59,9 @@ void write_svg_plot(const std::string& path, const PlotSpec& spec) {
   g << "set output " << quoted(tmp) << "\n";
   g << "set title " << quoted_text(spec.title) << " noenhanced\n";
   g << "set xlabel " << quoted_text(spec.xlabel) << " noenhanced\nset ylabel " << quoted_text(spec.ylabel) << " noenhanced\n";
-  g << "set grid\nset key top left noenhanced opaque box\n";
+  const bool known_key = spec.key == "top left" || spec.key == "top right" || spec.key == "bottom left" ||
+                         spec.key == "bottom right" || spec.key == "outside right";
+  g << "set grid\nset key " << (known_key ? spec.key : std::string("top left")) << " noenhanced opaque box\n";
   if (spec.logx) g << "set logscale x\nset format x '10^{%L}'\n";
   if (spec.logy) g << "set logscale y\nset format y '10^{%L}'\n";
   // Series without a finite point are left out (gnuplot refuses empty data); a chart with no

@@ -18,6 +18,7 @@ struct PlotSpec {
   std::string title, xlabel, ylabel;
   bool logx = false, logy = false;
   std::vector<PlotSeries> series;
+  std::string key = "top left";  // where the legend goes (gnuplot's "set key" position)
 };
 
 // Throws std::runtime_error naming the file when gnuplot is missing or fails, or a series has

@@ -53,6 +53,11 @@ ModulusTable table_from_json(const nlohmann::json& j, const std::string& source)
 }  // namespace
 
 double Compound::log10_shift(double temperature) const {
+  if (arrhenius_energy) {
+    constexpr double kGas = 8.314462618;  // J/(mol K)
+    if (!(temperature > -273.15)) throw InputError("--temperature", "must lie above absolute zero");
+    return *arrhenius_energy / (kGas * std::log(10.0)) * (1 / (temperature + 273.15) - 1 / (reference_temperature + 273.15));
+  }
   const double dt = temperature - reference_temperature;
   if (!(wlf_c2 + dt > 0))
     throw InputError("--temperature", "the WLF shift has its pole at Tref - C2 = " +
@@ -95,6 +100,8 @@ void check_compound(const Compound& c, const std::string& source) {
   }
   if (!std::isfinite(c.glassy_modulus())) throw InputError(source, "prony: the glassy modulus e_relaxed_pa + sum of de_pa overflows");
   if (!(c.poisson > -1 && c.poisson <= 0.5)) throw InputError(source, "poisson must lie in (-1, 0.5]");
+  if (c.arrhenius_energy && !(*c.arrhenius_energy > 0 && std::isfinite(*c.arrhenius_energy)))
+    throw InputError(source, "arrhenius.activation_energy_j_mol must be a positive energy in J/mol");
   if (!(c.wlf_c1 >= 0 && std::isfinite(c.wlf_c1))) throw InputError(source, "wlf.c1 must be a finite number >= 0");
   if (!(c.wlf_c2 > 0 && std::isfinite(c.wlf_c2))) throw InputError(source, "wlf.c2_k must be positive (K)");
   if (!std::isfinite(c.reference_temperature)) throw InputError(source, "reference_temperature_c must be finite");
@@ -112,9 +119,15 @@ Compound compound_from_json(const nlohmann::json& j, const std::string& source) 
     c.synthetic = j["synthetic"].get<bool>();
   }
   c.reference_temperature = number(j, "reference_temperature_c", source);
-  if (!j.contains("wlf")) throw InputError(source, "missing key \"wlf\"");
-  c.wlf_c1 = number(j["wlf"], "c1", source);
-  c.wlf_c2 = positive(j["wlf"], "c2_k", source);
+  if (j.contains("wlf") == j.contains("arrhenius"))
+    throw InputError(source, j.contains("wlf") ? "give the shift law as \"wlf\" or \"arrhenius\", not both"
+                                               : "missing key \"wlf\" (or \"arrhenius\")");
+  if (j.contains("wlf")) {
+    c.wlf_c1 = number(j["wlf"], "c1", source);
+    c.wlf_c2 = positive(j["wlf"], "c2_k", source);
+  } else {
+    c.arrhenius_energy = positive(j["arrhenius"], "activation_energy_j_mol", source);
+  }
   c.poisson = number(j, "poisson", source);
   if (j.contains("prony") == j.contains("table"))
     throw InputError(source, "give the master curve as either \"prony\" (a Prony series) or \"table\" (omega, E', E''), not " +
@@ -166,9 +179,12 @@ nlohmann::json compound_to_json(const Compound& c) {
                       {"source", c.source},
                       {"synthetic", c.synthetic},
                       {"reference_temperature_c", c.reference_temperature},
-                      {"wlf", {{"c1", c.wlf_c1}, {"c2_k", c.wlf_c2}}},
                       {"poisson", c.poisson},
                       {"prony", {{"e_relaxed_pa", c.e_relaxed}, {"terms", terms}}}};
+  if (c.arrhenius_energy)
+    j["arrhenius"] = {{"activation_energy_j_mol", *c.arrhenius_energy}};
+  else
+    j["wlf"] = {{"c1", c.wlf_c1}, {"c2_k", c.wlf_c2}};
   if (c.form == "table") j["table_fit"] = {{"rows", c.table_rows}, {"max_misfit", c.table_misfit}};
   if (c.thermal)
     j["thermal"] = {{"density_kg_m3", c.thermal->density},

@@ -6,6 +6,8 @@
 // Units: Pa, s, rad/s, degrees Celsius (temperature differences in K).
 //   E(omega, Tref) = E_r + sum_i dE_i * i omega tau_i / (1 + i omega tau_i)
 //   log10 aT = -C1 (T - Tref) / (C2 + T - Tref),  E(omega, T) = E(omega aT, Tref)
+// (or Arrhenius, "arrhenius": {"activation_energy_j_mol": Ea} in place of "wlf":
+//   log10 aT = Ea / (R ln 10) (1/T - 1/Tref), T in K)
 // so E'(0) = E_r (rubbery plateau), E'(inf) = E_r + sum dE_i (glassy), and each term's loss
 // E'' = dE_i omega tau_i / (1 + (omega tau_i)^2) peaks at omega tau_i = 1 with dE_i / 2.
 //
@@ -43,6 +45,9 @@ struct Compound {
   bool synthetic = false;  // not fitted to a measured master curve: say so wherever it appears
   double reference_temperature = 20;  // deg C
   double wlf_c1 = 8.86, wlf_c2 = 101.6;  // -, K
+  // Arrhenius instead of WLF (a compound above Tg + 100 K, or a filler's own shift):
+  // log10 aT = Ea / (R ln 10) (1/T - 1/Tref), T in K; J/mol, > 0. Absent: WLF.
+  std::optional<double> arrhenius_energy;
   double poisson = 0.5;
   double e_relaxed = 0;  // Pa, > 0
   std::vector<PronyTerm> terms;
