@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "app/print_summary.hpp"
+#include "app/q1_option.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/number_text.hpp"
 #include "lib/friction/friction_file.hpp"
@@ -27,7 +28,7 @@ struct FrictionCli {
   CLI::Option* film_opt = nullptr;
   double temperature = 20, pressure = 3e5;
   std::vector<double> speeds, speed_range;
-  double q1 = 0;
+  std::string q1;
   bool flash = false, quiet = false;
   int points_per_decade = 48, threads = 0;
   CLI::Option *q1_opt = nullptr, *speeds_opt = nullptr, *range_opt = nullptr;
@@ -129,6 +130,10 @@ void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<s
               s.compound.synthetic ? "  [SYNTHETIC]" : "");
   std::printf("  sigma0 %.3g Pa, T0 %.1f C, flash temperature %s\n", s.options.pressure, s.options.temperature,
               s.options.flash_temperature ? "on" : "off");
+  std::printf("  cut-off q1 %.4g 1/m (%s)\n", r.dry_spectrum.q_end,
+              r.q1_choice == "default" ? "default: 2 pi / 20 um or the map's last resolved wavenumber"
+              : r.q1_choice == "given" ? "given"
+                                       : (r.q1_choice + " criterion: the extrapolated spectrum's rms slope reaches it").c_str());
   std::printf("  spectrum q %.3g ... %.3g 1/m, measured to %.3g 1/m%s\n", r.dry_spectrum.q_start, r.dry_spectrum.q_end,
               r.dry_spectrum.q_measured,
               r.dry_spectrum.extrapolated() ? "; above that EXTRAPOLATED along the fitted self-affine law" : "");
@@ -176,7 +181,7 @@ int run_friction_command(const FrictionCli& c) {
   s.options.flash_temperature = c.flash;
   s.options.points_per_decade = c.points_per_decade;
   s.options.threads = c.threads;
-  if (c.q1_opt->count()) s.q1 = c.q1;
+  if (c.q1_opt->count()) apply_q1_option(c.q1, "--q1", s);
   if (c.speeds_opt->count() && c.range_opt->count()) throw InputError("--speeds", "give --speeds or --speed-range, not both");
   s.speeds = c.speeds_opt->count() ? c.speeds : log_speeds(c.range_opt->count() ? c.speed_range : std::vector<double>{1e-6, 100, 33});
   if (!c.no_film) {
@@ -282,7 +287,11 @@ Command add_friction(CLI::App& root) {
   c->speeds_opt = s->add_option("--speeds", c->speeds, "sliding speeds in m/s");
   c->range_opt = s->add_option("--speed-range", c->speed_range, "A B N: N speeds log-spaced from A to B m/s (default 1e-6 100 33)")
                      ->expected(3);
-  c->q1_opt = s->add_option("--q1", c->q1, "short-wavelength cut-off in 1/m (default 2 pi / 20 um = 3.14e5, or the map's last resolved wavenumber if larger)");
+  c->q1_opt = s->add_option("--q1", c->q1,
+                            "short-wavelength cut-off: a wavenumber in 1/m (default 2 pi / 20 um = 3.14e5, or the map's last "
+                            "resolved wavenumber if larger), or rms-slope[:S]: where the extrapolated spectrum's rms slope "
+                            "reaches S (default 1.3, Lorenz et al. 2015)")
+                  ->type_name("Q1");
   s->add_flag("--flash-temperature", c->flash, "heat the rubber at each scale by the power the coarser scales dissipate");
   s->add_option("--points-per-decade", c->points_per_decade, "q quadrature nodes per decade")->capture_default_str();
   s->add_option("--json", c->json, "write the result as JSON (SI units)")->type_name("OUTPUT");

@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/launch.hpp"
 #include "app/print_summary.hpp"
+#include "app/q1_option.hpp"
 #include "app/scene_options.hpp"
 #include "app/synth_options.hpp"
 #include "lib/core/errors.hpp"
@@ -38,7 +39,8 @@ struct SweepCommonCli {
   double water_film = 0;
   bool no_film = false;
   CLI::Option* film_opt = nullptr;
-  double pressure = 3e5, temperature = 20, speed = kLockedWheelSpeed, friction_q1 = 0;
+  double pressure = 3e5, temperature = 20, speed = kLockedWheelSpeed;
+  std::string friction_q1;
   bool flash = false;
   CLI::Option* q1_opt = nullptr;
   int threads = 0;
@@ -67,7 +69,7 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
       s.add_option("--pressure", c.pressure, "hysteresis: nominal pressure sigma0, Pa")->capture_default_str(),
       s.add_option("--temperature", c.temperature, "hysteresis: temperature, deg C")->capture_default_str(),
       s.add_option("--speed", c.speed, "hysteresis: sliding speed, m/s (default 17.9: the locked wheel at 64 km/h)"),
-      c.q1_opt = s.add_option("--friction-q1", c.friction_q1, "hysteresis: spectrum cut-off q1, 1/m (as `friction --q1`)"),
+      c.q1_opt = s.add_option("--friction-q1", c.friction_q1, "hysteresis: spectrum cut-off q1, 1/m or rms-slope[:S] (as `friction --q1`)")->type_name("Q1"),
       s.add_flag("--flash-temperature", c.flash, "hysteresis: with the flash temperature (as `friction`)"),
       c.film_opt = s.add_option("--water-film", c.water_film, "hysteresis: water film ahead of the tyre, m (default: the test's, 0.5e-3)"),
       s.add_option("--test", c.test, "hysteresis: skid test and tyre, e274-ribbed, e274-smooth or a JSON file (as `friction`)")
@@ -126,7 +128,7 @@ std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
   s.options.pressure = c.pressure;
   s.options.temperature = c.temperature;
   s.options.flash_temperature = c.flash;
-  if (c.q1_opt->count()) s.q1 = c.friction_q1;
+  if (c.q1_opt->count()) apply_q1_option(c.friction_q1, "--friction-q1", s);
   s.speeds = {c.speed};
   if (c.no_film && c.film_opt->count()) throw InputError("--water-film", "--no-film computes no film: give one or the other");
   if (!c.no_film) {

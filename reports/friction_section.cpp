@@ -111,6 +111,19 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
     o << "</tr>";
   }
   o << "</table>\n";
+  if (j.contains("q1_scan") && !j["q1_scan"].empty()) {
+    // mu against the cut-off, with the run's own q1 (a number, the default, or a criterion's) marked
+    PlotSpec q{"dry mu at 64 km/h against the cut-off q1", "q1 [1/m]", "mu", true, false, {}};
+    PlotSeries scan{"mu(q1)", {}, {}, "linespoints", {}};
+    for (const auto& p : j["q1_scan"]) scan.x.push_back(num(p["q1"])), scan.y.push_back(num(p["mu_locked_wheel"]));
+    const std::string choice = j.value("q1_choice", std::string("default"));
+    PlotSeries chosen{"this run's q1 (" + choice + ")", {num(j["q1"])}, {num(j["locked_wheel"]["mu"])}, "points pt 7 ps 2", {}};
+    q.series = {scan, chosen};
+    const std::string chart = chart_dir + "/mu_q1.svg";
+    write_svg_plot(chart, q);
+    o << html::figure(chart, "The unmeasured scales: mu at 64 km/h against the cut-off q1, this run's choice marked (" +
+                                 escape(choice) + ", q1 = " + fmt(num(j["q1"]), "%.3g") + " 1/m).");
+  }
   if (j.contains("water_film")) o << film_html(j["water_film"], chart_dir);
   o << "<p>Checks:</p><ul>";
   for (const auto& c : j["validity"]["checks"])

@@ -15,7 +15,9 @@
 #include "lib/friction/hysteresis_friction.hpp"
 #include "lib/friction/modulus_table.hpp"
 #include "lib/friction/friction_scene.hpp"
+#include "roads/psd_fit.hpp"
 #include "roads/self_affine_psd.hpp"
+#include "roads/spectrum.hpp"
 #include "roads/synthesize.hpp"
 #include "water/rain_fill.hpp"
 
@@ -317,6 +319,45 @@ TEST(HysteresisFriction, BadOptionsAreRefusedByName) {
   opt.pressure = 1e5;
   EXPECT_THROW(hysteresis_friction(road_like_spectrum(), comp, 0.0, opt), InputError);
   EXPECT_THROW(hysteresis_friction(road_like_spectrum(), comp, -1.0, opt), InputError);
+}
+
+}  // namespace
+}  // namespace wr
+
+namespace wr {
+namespace {
+
+// The rms-slope criterion of the cut-off (issue 56): the spectrum cut at the q1 it picks has
+// exactly the asked rms slope, sqrt(2 pi int q^3 C dq) by an independent quadrature (Simpson in ln q
+// between the spectrum's nodes), and q1 grows with the slope asked.
+TEST(CutOffCriterion, RmsSlopeCriterionGivesTheAskedSlope) {
+  SynthParams p;
+  p.nx = p.ny = 128;
+  p.dx = 1e-4;
+  p.h0 = 1e-4;
+  p.hurst = 0.7;
+  p.q0_ratio = 4;
+  p.seed = 5;
+  const HeightMap map = synthesize(p).map;
+  const SpectrumResult sp = analyze_spectrum(map);
+  const PsdFit fit = fit_self_affine(sp.psd, sp.nyquist, false);
+  double last = 0;
+  for (double slope : {0.8, 1.3, 2.0}) {
+    const double q1 = q1_for_rms_slope(sp.psd, sp.nyquist, fit, slope, "map", "--q1");
+    EXPECT_GT(q1, last);
+    last = q1;
+    const RoughnessSpectrum c = spectrum_from_psd(sp.psd, sp.nyquist, fit, q1, "map");
+    const double a = std::log(c.q_start), b = std::log(c.q_end);
+    const int n = 20000;
+    double s = 0;
+    for (int k = 0; k <= n; ++k) {
+      const double q = std::exp(a + (b - a) * k / n), f = 2 * M_PI * std::pow(q, 4) * c(q);
+      s += f * (k == 0 || k == n ? 1 : (k % 2 ? 4 : 2));
+    }
+    s *= (b - a) / n / 3;
+    EXPECT_NEAR(std::sqrt(s) / slope, 1.0, 1e-3) << slope;
+  }
+  EXPECT_THROW(q1_for_rms_slope(sp.psd, sp.nyquist, fit, 0, "map", "--q1"), InputError);
 }
 
 }  // namespace

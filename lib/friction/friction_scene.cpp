@@ -78,6 +78,7 @@ void check_friction_scene(const FrictionScene& s) {
     throw InputError("--flash-temperature", "the compound \"" + s.compound.name +
                                                 "\" has no \"thermal\" block (density, specific heat, conductivity)");
   if (s.q1 && !(*s.q1 > 0 && std::isfinite(*s.q1))) throw InputError("--q1", "must be a positive wavenumber in 1/m");
+  if (s.q1 && s.q1_rms_slope) throw InputError("--q1", "give a wavenumber or a criterion, not both");
 }
 
 FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& wet, const FrictionScene& s,
@@ -90,7 +91,14 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
   r.measured = std::move(sp.psd);
   r.nyquist = sp.nyquist;
   r.fit = fit_self_affine(r.measured, r.nyquist, false);
-  r.dry_spectrum = spectrum_from_psd(r.measured, r.nyquist, r.fit, s.q1, source);
+  std::optional<double> q1 = s.q1;
+  if (s.q1_rms_slope) {
+    q1 = q1_for_rms_slope(r.measured, r.nyquist, r.fit, *s.q1_rms_slope, source, "--q1");
+    r.q1_choice = "rms-slope " + number_text(*s.q1_rms_slope);
+  } else if (s.q1) {
+    r.q1_choice = "given";
+  }
+  r.dry_spectrum = spectrum_from_psd(r.measured, r.nyquist, r.fit, q1, source);
   r.timer.start("dry mu(v)");
   r.dry = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
   std::optional<RoughnessSpectrum> sealed;  // the local sealing model's spectrum
@@ -223,6 +231,7 @@ nlohmann::json friction_run_json(const FrictionRun& r, const FrictionScene& s) {
   j["pressure"] = s.options.pressure;
   j["q0"] = r.dry_spectrum.q_start;
   j["q1"] = r.dry_spectrum.q_end;
+  j["q1_choice"] = r.q1_choice;
   j["q_measured"] = r.dry_spectrum.q_measured;
   j["extrapolated"] = r.dry_spectrum.extrapolated();
   j["extension_beta"] = r.dry_spectrum.extension_beta;

@@ -50,6 +50,7 @@ struct FrictionScene {
   std::string compound_path;     // "" for the built-in default
   FrictionOptions options;       // pressure, temperature, quadrature, flash temperature, threads
   std::optional<double> q1;      // 1/m; absent: max(kDefaultQ1, the map's last resolved wavenumber)
+  std::optional<double> q1_rms_slope;  // instead of q1: the rms-slope criterion's slope (q1_for_rms_slope)
   std::vector<double> speeds;    // m/s, > 0
   // Wet friction at speed under a water film (lib/friction/skid_at_speed.hpp); absent: the
   // hysteresis friction of the drained road alone.
@@ -74,6 +75,7 @@ struct FrictionRun {
   PsdFit fit;               // its self-affine fit
   double nyquist = 0;       // 1/m
   RoughnessSpectrum dry_spectrum;  // the above, extended to q1
+  std::string q1_choice = "default";  // "given", "default", or "rms-slope S"
   FrictionCurve dry;
   std::optional<FrictionCurve> wet_homogeneous, wet_local;
   double coverage = 0;

@@ -127,4 +127,27 @@ RoughnessSpectrum band_spectrum(double qa, double qb, double c) {
   return s;
 }
 
+double q1_for_rms_slope(const RadialPsd& psd, double nyquist, const PsdFit& fit, double slope, const std::string& source,
+                        const std::string& option) {
+  if (!(slope > 0 && std::isfinite(slope))) throw InputError(option, "the rms slope of the criterion must be > 0");
+  constexpr double kCap = 1e9;  // 1/m: a nanometre; no road's criterion lies beyond
+  const RoughnessSpectrum full = spectrum_from_psd(psd, nyquist, fit, kCap, source);
+  // 2 pi int q^3 C dq in ln q (integrand 2 pi q^4 C), trapezoid on 200 nodes per decade
+  const double a = std::log(full.q_start), b = std::log(kCap);
+  const int n = static_cast<int>(std::ceil((b - a) / std::log(10.0) * 200));
+  const double h = (b - a) / n, target = slope * slope;
+  double sum = 0, prev = 2 * M_PI * std::pow(full.q_start, 4) * full(full.q_start);
+  for (int k = 1; k <= n; ++k) {
+    const double q = std::exp(a + k * h), f = 2 * M_PI * std::pow(q, 4) * full(q), step = 0.5 * h * (prev + f);
+    if (sum + step >= target) {
+      const double t = step > 0 ? (target - sum) / step : 1.0;  // linear within the last interval
+      return std::exp(a + (k - 1 + t) * h);
+    }
+    sum += step;
+    prev = f;
+  }
+  throw InputError(option, "the surface's rms slope reaches only " + std::to_string(std::sqrt(sum)) + " by q = 1e9 1/m, not " +
+                               std::to_string(slope));
+}
+
 }  // namespace wr

@@ -56,6 +56,16 @@ RoughnessSpectrum spectrum_from_psd(const RadialPsd& psd, double nyquist, const 
 RoughnessSpectrum wet_spectrum(const RoughnessSpectrum& dry, const RadialPsd& wet_psd, double nyquist,
                                double extension_scale);
 
+// The cut-off by the rms-slope criterion (Lorenz, Oh, Lee, Lee & Persson, J. Chem. Phys. 142,
+// 194701 (2015): the rubber feels the road down to the scale at which the surface, including the
+// band extrapolated along the fitted self-affine law, reaches an rms slope of order 1; 1.3 for
+// asphalt): the q1 at which sqrt(2 pi int_{qs}^{q1} q^3 C dq) = `slope` (the design's rms slope
+// sqrt(2 m2)). InputError naming `option` when the slope is not reached below 1e9 1/m or the
+// measured band has no fitted law to extrapolate (`source` names the surface).
+constexpr double kDefaultQ1Slope = 1.3;
+double q1_for_rms_slope(const RadialPsd& psd, double nyquist, const PsdFit& fit, double slope, const std::string& source,
+                        const std::string& option);
+
 // C = c (m^4) on [qa, qb] and 0 elsewhere: the one-band surface of the exact tests.
 RoughnessSpectrum band_spectrum(double qa, double qb, double c);
 
