@@ -1,5 +1,6 @@
 // `wetroad friction SURFACE [--wet WET.h5]`: Persson's hysteresis friction mu(v), dry and wet
 // (lib/friction/friction_scene.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -24,7 +25,9 @@ namespace {
 struct FrictionCli {
   std::string input, wet, compound, json, out, plot, plot_q1, plot_squeeze, test = "e274-ribbed";
   double water_film = 0;
-  bool no_film = false;
+  bool no_film = false, band = false;
+  std::vector<std::string> band_ranges;
+  int band_samples = 32;
   CLI::Option* film_opt = nullptr;
   double temperature = 20, pressure = 3e5;
   std::vector<double> speeds, speed_range;
@@ -125,6 +128,36 @@ void print_film(const SkidCurve& c, const FilmScene& f) {
     std::printf("  no hydroplaning: the texture holds the film or drains it to the asperities at any speed\n");
 }
 
+// NAME=LOW:HIGH (the input's own unit) for --band-range; names as lib/friction/uncertainty.hpp.
+InputRange parse_band_range(const std::string& text) {
+  const auto eq = text.find('='), colon = text.find(':', eq == std::string::npos ? 0 : eq);
+  const std::string name = text.substr(0, eq);
+  static const std::vector<std::string> names = {"pressure", "temperature", "water_film", "q1", "compound_shift"};
+  if (eq == std::string::npos || colon == std::string::npos || std::find(names.begin(), names.end(), name) == names.end())
+    throw InputError("--band-range", "\"" + text + "\": write NAME=LOW:HIGH with NAME one of pressure (Pa), temperature (C), "
+                                     "water_film (m), q1 (1/m), compound_shift (decades)");
+  double lo = 0, hi = 0;
+  try {
+    lo = std::stod(text.substr(eq + 1, colon - eq - 1));
+    hi = std::stod(text.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw InputError("--band-range", "\"" + text + "\": LOW and HIGH must be numbers");
+  }
+  const bool positive = name != "temperature" && name != "compound_shift";
+  if (!(lo < hi && std::isfinite(lo) && std::isfinite(hi)) || (positive && !(lo > 0)))
+    throw InputError("--band-range", "\"" + text + "\": needs LOW < HIGH" + std::string(positive ? ", both > 0" : ""));
+  if (name == "water_film") check_water_film(hi, "--band-range");
+  return {name, lo, hi, name == "q1" || name == "water_film"};
+}
+
+void print_band(const SkidBand& b, const std::vector<InputRange>& ranges) {
+  std::printf("  skid number's band over the inputs' ranges: 5-95 %% %.1f ... %.1f, extremes %.1f ... %.1f "
+              "(Latin hypercube, %zu samples; %d evaluations)\n", b.p05, b.p95, b.min, b.max, b.samples.size(), b.evaluations);
+  std::printf("  %-16s %12s %12s %9s %9s\n", "input", "low", "high", "SN low", "SN high");
+  for (const TornadoRow& t : b.tornado) std::printf("  %-16s %12.4g %12.4g %9.1f %9.1f\n", t.name.c_str(), t.low, t.high, t.sn_low, t.sn_high);
+  (void)ranges;
+}
+
 void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<std::pair<double, double>>& q1_scan) {
   std::printf("hysteresis friction (Persson), compound: %s%s\n", s.compound.name.c_str(),
               s.compound.synthetic ? "  [SYNTHETIC]" : "");
@@ -158,6 +191,7 @@ void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<s
     std::printf("\n");
   }
   if (r.film) print_film(*r.film, *s.film);
+  if (r.band) print_band(*r.band, r.band_ranges);
   std::printf("\nchecks\n");
   for (const ValidityCheck& c : r.checks)
     std::printf("  [%s] %s: %s\n", c.passed ? "pass" : (c.decides_model ? "FAIL" : "flag"), c.name.c_str(), c.detail.c_str());
@@ -194,6 +228,14 @@ int run_friction_command(const FrictionCli& c) {
     s.film = film;
   } else if (c.film_opt->count()) {
     throw InputError("--water-film", "--no-film computes no film: give one or the other");
+  }
+  if (c.band || !c.band_ranges.empty()) {
+    if (!s.film) throw InputError("--band", "the band is the skid number's: not with --no-film");
+    if (!(c.band_samples >= 4 && c.band_samples <= 10000)) throw InputError("--band-samples", "must lie in 4 ... 10000");
+    UncertaintySetup u;
+    u.samples = c.band_samples;
+    for (const std::string& t : c.band_ranges) u.ranges.push_back(parse_band_range(t));
+    s.band = u;
   }
   check_friction_scene(s);
 
@@ -308,6 +350,13 @@ Command add_friction(CLI::App& root) {
   s->add_option("--plot-squeeze", c->plot_squeeze, "chart the film's mean separation and load share against time at the test's speed as SVG")
       ->type_name("OUTPUT");
   s->add_flag("--no-film", c->no_film, "no water film: only the hysteresis friction of the drained road");
+  s->add_flag("--band", c->band,
+              "the skid number's band and tornado over the inputs' ranges (sigma0 x2/3...x4/3, T +-10 K, film x1/2...x2, "
+              "q1 x1/3...x3, a synthetic compound's master curve +-0.5 decades; docs/friction-model.md)");
+  s->add_option("--band-range", c->band_ranges,
+                "NAME=LOW:HIGH replacing the default ranges (pressure Pa, temperature C, water_film m, q1 1/m, "
+                "compound_shift decades); implies --band");
+  s->add_option("--band-samples", c->band_samples, "Latin-hypercube samples of the band")->capture_default_str();
   s->add_option("--threads", c->threads, "worker threads over speeds (default: all)")->check(CLI::NonNegativeNumber);
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   return {s, [c] { return run_friction_command(*c); }};

@@ -59,6 +59,28 @@ std::string film_html(const nlohmann::json& f, const std::string& chart_dir) {
     << (f["hydroplaning_kmh"].is_null() ? std::string("none at any speed (the texture holds or drains the film)")
                                         : "above " + fmt(num(f["hydroplaning_kmh"]), "%.0f") + " km/h")
     << "</li></ul>\n";
+  if (f.contains("band")) {
+    const auto& b = f["band"];
+    o << "<p><b>Band of the skid number</b> over the inputs' ranges (Latin hypercube, " << b["samples"].get<int>()
+      << " samples): 5&ndash;95 % " << fmt(num(b["p05"]), "%.1f") << " &ndash; " << fmt(num(b["p95"]), "%.1f")
+      << ", extremes " << fmt(num(b["min"]), "%.1f") << " &ndash; " << fmt(num(b["max"]), "%.1f")
+      << ". The tornado: each input alone at the ends of its range, the others nominal.</p>\n";
+    // the tornado: one horizontal bar per input, the largest swing on top
+    PlotSpec t{"tornado: SN at 64 km/h, one input at a time", "SN", "input (largest swing on top)", false, false, {}};
+    const auto& rows = b["tornado"];
+    const double n = static_cast<double>(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& r = rows[i];
+      const double y = n - static_cast<double>(i);
+      t.series.push_back({r.value("name", std::string("?")) + " " + fmt(num(r["low"]), "%.3g") + " ... " + fmt(num(r["high"]), "%.3g"),
+                          {num(r["sn_low"]), num(r["sn_high"])}, {y, y}, "linespoints", {}});
+    }
+    t.series.push_back({"nominal", {num(b["nominal"]), num(b["nominal"])}, {0.5, n + 0.5}, "lines", {}});
+    t.key = "outside right";
+    const std::string chart = chart_dir + "/tornado.svg";
+    write_svg_plot(chart, t);
+    o << html::figure(chart, "Tornado chart of the skid number: the swing each input causes over its range.");
+  }
   return o.str();
 }
 

@@ -20,6 +20,7 @@
 #include "reports/sweep_outputs.hpp"
 #include "reports/plot.hpp"
 #include "reports/skid_speed_section.hpp"
+#include "reports/summary_section.hpp"
 #include "wetroad/version.hpp"
 
 namespace wr {
@@ -376,6 +377,7 @@ void write_html_report(const std::string& path, const ReportInput& in) {
       << "</title><style>" << kStyle << "</style></head><body>\n<h1>" << escape(in.title) << "</h1>\n"
       << "<p>Written by wetroad " << kVersion << " on " << utc_now_iso8601()
       << ". Charts are drawn by gnuplot and embedded; the file needs nothing else.</p>\n";
+    o << summary_section_html(in);
     int k = 0;
     for (const auto& [file, summary] : in.friction)
       o << friction_section_html(file, summary, charts + "/friction" + std::to_string(k++));

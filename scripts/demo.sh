@@ -23,7 +23,7 @@ echo
 echo
 "$BIN" fill "$OUT/surface.h5" --limit -o "$OUT/wet-limit.h5" --json "$OUT/wet-limit.json"
 echo
-"$BIN" friction "$OUT/surface.h5" --wet "$OUT/wet-limit.h5" --flash-temperature --json "$OUT/friction.json" \
+"$BIN" friction "$OUT/surface.h5" --wet "$OUT/wet-limit.h5" --flash-temperature --band --json "$OUT/friction.json" \
   --out "$OUT/friction.h5" --plot "$OUT/friction.svg" --plot-q1 "$OUT/friction-q1.svg" --plot-squeeze "$OUT/squeeze.svg"
 echo
 "$BIN" flow "$OUT/surface.h5" --pressure 3e5 --json "$OUT/flow.json" --vti "$OUT/flow.vti"

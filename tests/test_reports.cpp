@@ -133,3 +133,40 @@ TEST(Html, EscapeLeavesNoMarkupNoControlAndOnlyUtf8) {
 
 }  // namespace
 }  // namespace wr
+
+#include "reports/html_report.hpp"
+
+namespace wr {
+namespace {
+
+// Issue 56: the summary is the first thing after the title; a friction result without a film
+// shows no skid number; an apostrophe in a chart label reaches gnuplot whole (it used to end
+// gnuplot's quoted string).
+TEST(Html, SummaryComesFirstAndADryRoadHasNoSkidNumber) {
+  const std::string dir = ::testing::TempDir() + "wetroad-summary-" + std::to_string(::getpid());
+  fs::create_directories(dir);
+  ReportInput in;
+  nlohmann::json dry = {{"compound", {{"name", "c"}, {"synthetic", true}}}, {"flash_temperature", false},
+                        {"pressure", 3e5}, {"temperature", 20}, {"q0", 200}, {"q1", 3e5}, {"q_measured", 3e4}, {"mpd", 4.5e-4},
+                        {"speeds", {{{"v", 1.0}, {"mu", 0.5}, {"area_fraction", 0.01}, {"temperature_rise", 0.0}}}},
+                        {"peak", {{"mu", 0.5}, {"v", 1.0}}}, {"locked_wheel", {{"mu", 0.5}, {"temperature_rise", 0.0}}},
+                        {"sn64", 50.0}, {"validity", {{"checks", nlohmann::json::array()}}}};
+  in.friction.push_back({"dry.h5", dry});
+  in.measured.push_back({"site A", 0.8, 55, std::nullopt});
+  write_html_report(dir + "/r.html", in);
+  std::ifstream f(dir + "/r.html");
+  const std::string html((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const auto h1 = html.find("<h1>"), summary = html.find("<h2>Summary</h2>"), first_h2 = html.find("<h2>");
+  ASSERT_NE(summary, std::string::npos);
+  EXPECT_EQ(summary, first_h2);
+  EXPECT_LT(h1, summary);
+  EXPECT_NE(html.find("no film: no skid number"), std::string::npos);
+  EXPECT_NE(html.find("site A"), std::string::npos);
+  EXPECT_EQ(html.find("(SN 50"), std::string::npos);  // the dry curve is no longer called a skid number
+  PlotSpec p{"Persson's theory", "E' [Pa]", "E'' [Pa]", false, false, {{"it's", {1, 2}, {1, 2}, "lines", {}}}};
+  EXPECT_NO_THROW(write_svg_plot(dir + "/q.svg", p));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace wr

@@ -5,6 +5,7 @@
 
 #include "lib/core/errors.hpp"
 #include "lib/core/number_text.hpp"
+#include "roads/mpd.hpp"
 #include "roads/psd_fit.hpp"
 #include "roads/spectrum.hpp"
 
@@ -91,6 +92,7 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
   r.measured = std::move(sp.psd);
   r.nyquist = sp.nyquist;
   r.fit = fit_self_affine(r.measured, r.nyquist, false);
+  r.mpd = mpd_of_map(dry, std::vector<unsigned char>(dry.size(), 0), {}, s.options.threads).mpd;
   std::optional<double> q1 = s.q1;
   if (s.q1_rms_slope) {
     q1 = q1_for_rms_slope(r.measured, r.nyquist, r.fit, *s.q1_rms_slope, source, "--q1");
@@ -130,6 +132,14 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
       return mu;
     };
     r.film = skid_curve(r.dry_spectrum, s.compound, s.options, *s.film, s.speeds, mu_h);
+    if (s.band) {
+      r.timer.start("skid-number band");
+      const SkidInputs in{r.dry_spectrum, hyst, scale, s.compound, s.options, *s.film};
+      UncertaintySetup setup = *s.band;
+      if (setup.ranges.empty()) setup.ranges = default_ranges(in);
+      r.band_ranges = setup.ranges;
+      r.band = skid_number_band(in, setup);
+    }
   }
   r.timer.start("checks");
   r.checks = scene_checks(r, s);
@@ -209,6 +219,15 @@ nlohmann::json skid_curve_json(const SkidCurve& c, const FilmScene& film, double
           {"skid", skid}};
 }
 
+nlohmann::json skid_band_json(const SkidBand& b, const std::vector<InputRange>& ranges) {
+  nlohmann::json rs = nlohmann::json::array(), tornado = nlohmann::json::array();
+  for (const InputRange& r : ranges) rs.push_back({{"name", r.name}, {"low", r.low}, {"high", r.high}, {"logarithmic", r.logarithmic}});
+  for (const TornadoRow& t : b.tornado)
+    tornado.push_back({{"name", t.name}, {"low", t.low}, {"high", t.high}, {"sn_low", t.sn_low}, {"sn_high", t.sn_high}});
+  return {{"nominal", b.nominal}, {"p05", b.p05}, {"p95", b.p95}, {"min", b.min}, {"max", b.max},
+          {"samples", b.samples.size()}, {"evaluations", b.evaluations}, {"ranges", rs}, {"tornado", tornado}};
+}
+
 nlohmann::json hysteresis_validity_json(const std::vector<ValidityCheck>& checks) {
   nlohmann::json list = nlohmann::json::array();
   bool valid = true;
@@ -231,6 +250,7 @@ nlohmann::json friction_run_json(const FrictionRun& r, const FrictionScene& s) {
   j["pressure"] = s.options.pressure;
   j["q0"] = r.dry_spectrum.q_start;
   j["q1"] = r.dry_spectrum.q_end;
+  j["mpd"] = r.mpd;
   j["q1_choice"] = r.q1_choice;
   j["q_measured"] = r.dry_spectrum.q_measured;
   j["extrapolated"] = r.dry_spectrum.extrapolated();
@@ -244,6 +264,7 @@ nlohmann::json friction_run_json(const FrictionRun& r, const FrictionScene& s) {
                 {"local", friction_curve_json(*r.wet_local)}};
   }
   if (r.film) j["water_film"] = skid_curve_json(*r.film, *s.film, s.options.temperature);
+  if (r.band) j["water_film"]["band"] = skid_band_json(*r.band, r.band_ranges);
   j["timings"] = r.timer.to_json();
   return j;
 }

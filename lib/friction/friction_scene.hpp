@@ -37,6 +37,7 @@
 #include "lib/friction/hysteresis_friction.hpp"
 #include "lib/friction/roughness_spectrum.hpp"
 #include "lib/friction/skid_at_speed.hpp"
+#include "lib/friction/uncertainty.hpp"
 
 namespace wr {
 
@@ -55,6 +56,9 @@ struct FrictionScene {
   // Wet friction at speed under a water film (lib/friction/skid_at_speed.hpp); absent: the
   // hysteresis friction of the drained road alone.
   std::optional<FilmScene> film;
+  // With a film: the skid number's band and tornado over these input ranges (empty: the
+  // defaults of lib/friction/uncertainty.hpp); absent: none.
+  std::optional<UncertaintySetup> band;
 };
 
 struct FrictionCurve {
@@ -74,6 +78,7 @@ struct FrictionRun {
   RadialPsd measured;       // the dry map's radial PSD
   PsdFit fit;               // its self-affine fit
   double nyquist = 0;       // 1/m
+  double mpd = 0;           // m: the dry map's mean profile depth (ISO 13473-1, roads/mpd.hpp)
   RoughnessSpectrum dry_spectrum;  // the above, extended to q1
   std::string q1_choice = "default";  // "given", "default", or "rms-slope S"
   FrictionCurve dry;
@@ -83,6 +88,8 @@ struct FrictionRun {
   // hydroplaning speed; mu_h from the local sealing model's curve when a wet surface is given,
   // else the dry one.
   std::optional<SkidCurve> film;
+  std::optional<SkidBand> band;
+  std::vector<InputRange> band_ranges;
   std::vector<ValidityCheck> checks;  // pressure vs modulus, unmeasured share, compound origin
   PhaseTimer timer;
 };
@@ -110,6 +117,9 @@ nlohmann::json friction_curve_json(const FrictionCurve& c);
 //  load_share, patch_time, drain_time, contact_time, equilibrium_separation, equilibrium_contact,
 //  final_separation, trapped}.
 nlohmann::json skid_curve_json(const SkidCurve& c, const FilmScene& film, double temperature);
+// {nominal, p05, p95, min, max, samples, evaluations, ranges [{name, low, high}], tornado [{name,
+//  low, high, sn_low, sn_high}]}.
+nlohmann::json skid_band_json(const SkidBand& b, const std::vector<InputRange>& ranges);
 // {model: "hysteresis", mechanism, valid, checks: [{check, passed, detail}]}.
 nlohmann::json hysteresis_validity_json(const std::vector<ValidityCheck>& checks);
 // The JSON of `wetroad friction` (SI units): model, compound, temperature, pressure, q0, q1,
