@@ -5,7 +5,7 @@
 # --fuzz: the fuzzing tool chain instead (clang and its libFuzzer runtime; make fuzz).
 set -eu
 PACKAGES="cmake g++ make pkg-config libfftw3-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin \
-libcli11-dev nlohmann-json3-dev libssl-dev libeigen3-dev libgtest-dev petsc-dev libsuitesparse-dev libzip-dev libpugixml-dev libcgal-dev gnuplot-nox librsvg2-bin libxml2-utils"
+libcli11-dev nlohmann-json3-dev libssl-dev libeigen3-dev libgtest-dev petsc-dev libsuitesparse-dev libzip-dev libpugixml-dev libcgal-dev gnuplot-nox librsvg2-bin libxml2-utils chromium-headless-shell"
 [ "${1:-}" = "--fuzz" ] && PACKAGES="clang libclang-rt-14-dev"
 
 missing=""

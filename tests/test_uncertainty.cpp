@@ -62,7 +62,9 @@ TEST(SkidBand, TornadoRowsAreTheOneAtATimeEvaluations) {
     const TornadoRow& t = b.tornado[i];
     EXPECT_DOUBLE_EQ(t.sn_low, skid_number_at(in, {{t.name, t.low}})) << t.name;
     EXPECT_DOUBLE_EQ(t.sn_high, skid_number_at(in, {{t.name, t.high}})) << t.name;
-    if (i > 0) EXPECT_LE(std::abs(t.sn_high - t.sn_low), std::abs(b.tornado[i - 1].sn_high - b.tornado[i - 1].sn_low));
+    if (i > 0) {
+      EXPECT_LE(std::abs(t.sn_high - t.sn_low), std::abs(b.tornado[i - 1].sn_high - b.tornado[i - 1].sn_low));
+    }
   }
   EXPECT_THROW(skid_number_at(in, {{"humidity", 1}}), std::invalid_argument);
 }
