@@ -37,7 +37,7 @@ struct SweepCommonCli {
   SceneCli sc;  // every scene option (app/scene_options.hpp), with the sweeps' defaults
   std::string compound, test = "e274-ribbed";
   double water_film = 0;
-  bool no_film = false;
+  bool no_film = false, band = false;
   CLI::Option* film_opt = nullptr;
   double pressure = 3e5, temperature = 20, speed = kLockedWheelSpeed;
   std::string friction_q1;
@@ -75,7 +75,8 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
       s.add_option("--test", c.test, "hysteresis: skid test and tyre, e274-ribbed, e274-smooth or a JSON file (as `friction`)")
           ->type_name("FILE")
           ->capture_default_str(),
-      s.add_flag("--no-film", c.no_film, "hysteresis: no water film, the drained road's hysteresis friction only")};
+      s.add_flag("--no-film", c.no_film, "hysteresis: no water film, the drained road's hysteresis friction only"),
+      s.add_flag("--band", c.band, "hysteresis: each run's skid-number band over the inputs' default ranges (as `friction --band`)")};
   s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)")->check(CLI::NonNegativeNumber);
   s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->type_name("OUTPUT")->required();
   s.add_option("--csv", c.csv, "also write the table as CSV")->type_name("OUTPUT");
@@ -139,6 +140,10 @@ std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
       film.test.water_film = c.water_film;
     }
     s.film = film;
+  }
+  if (c.band) {
+    if (!s.film) throw InputError("--band", "the band is the skid number's: not with --no-film");
+    s.band = UncertaintySetup{};
   }
   check_friction_scene(s);
   return s;

@@ -64,8 +64,8 @@ std::vector<Row> sweep_rows(const std::string& file, const nlohmann::json& sweep
     row.surface = label;
     row.source = file;
     row.n = static_cast<int>(runs.size());
-    double m = 0, sn = 0, sn2 = 0, sp = 0, fr = 0;
-    int nsp = 0;
+    double m = 0, sn = 0, sn2 = 0, sp = 0, fr = 0, b05 = 0, b95 = 0;
+    int nsp = 0, nband = 0;
     for (const nlohmann::json* r : runs) {
       const auto& c = (*r)["contact"];
       m += 1e3 * num(roughness ? (*r)["mpd"] : (*r)["ground_mpd"]);
@@ -73,6 +73,7 @@ std::vector<Row> sweep_rows(const std::string& file, const nlohmann::json& sweep
       fr += num(c["fr60"]);
       if (c["sp_kmh"].is_number()) sp += num(c["sp_kmh"]), ++nsp;
       failed_checks(c["validity"], row.failed);
+      if (c.contains("sn_band")) b05 += num(c["sn_band"]["p05"]), b95 += num(c["sn_band"]["p95"]), ++nband;
     }
     const double n = runs.size();
     row.mpd_mm = m / n;
@@ -85,6 +86,12 @@ std::vector<Row> sweep_rows(const std::string& file, const nlohmann::json& sweep
       row.band_lo = row.sn - t * sd / std::sqrt(n);
       row.band_hi = row.sn + t * sd / std::sqrt(n);
       row.band_kind = "realizations, 95 % CI";
+    }
+    if (nband > 0) {  // the inputs' band (mean of the runs' 5-95 %), beside the realizations' interval
+      row.band_kind = (n > 1 ? "realizations 95 % CI " + fmt(row.band_lo, "%.1f") + " &ndash; " + fmt(row.band_hi, "%.1f") + "; " : std::string()) +
+                      "inputs 5-95 %";
+      row.band_lo = b05 / nband;
+      row.band_hi = b95 / nband;
     }
     out.push_back(row);
   }

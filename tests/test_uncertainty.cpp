@@ -71,3 +71,35 @@ TEST(SkidBand, TornadoRowsAreTheOneAtATimeEvaluations) {
 
 }  // namespace
 }  // namespace wr
+
+#include <nlohmann/json.hpp>
+
+#include "tests/cli_fixture.hpp"
+
+namespace wr {
+namespace {
+
+using wr_test::Cli;
+using wr_test::CliRun;
+class BandCli : public Cli {};
+
+// The sweeps' --band: each run records its skid-number band; the report's summary shows it
+// beside the spread over realizations.
+TEST_F(BandCli, SweepRunsCarryTheirBandIntoTheSummary) {
+  const CliRun s = run("sweep-roughness --dataset A --values 1e-4 --realizations 2 --size 64 --model hysteresis --band --out " +
+                       path("g.h5") + " --json " + path("g.json") + " -q");
+  ASSERT_EQ(s.code, 0) << s.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("g.json")));
+  for (const auto& r : j["runs"]) {
+    const auto& b = r["contact"]["sn_band"];
+    EXPECT_LE(b["min"].get<double>(), b["p05"].get<double>());
+    EXPECT_LE(b["p05"].get<double>(), b["p95"].get<double>());
+    EXPECT_LE(b["p95"].get<double>(), b["max"].get<double>());
+  }
+  ASSERT_EQ(run("report --sweep " + path("g.h5") + " -o " + path("r.html")).code, 0);
+  EXPECT_NE(slurp(path("r.html")).find("inputs 5-95 %"), std::string::npos);
+  EXPECT_EQ(run("sweep-roughness --dataset A --values 1e-4 --size 16 --model hysteresis --band --no-film --out " + path("x.h5")).code, 2);
+}
+
+}  // namespace
+}  // namespace wr

@@ -22,7 +22,8 @@ nlohmann::json friction_scene_json(const FrictionScene& s) {
                                            {"slip_speed", s.film->test.slip_speed},
                                            {"water_film", s.film->test.water_film},
                                            {"critical_contact", s.film->critical_contact}}
-                          : nlohmann::json(nullptr)}};
+                          : nlohmann::json(nullptr)},
+          {"band", s.band.has_value()}};
 }
 
 nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::optional<WetSurface>& wet,
@@ -72,6 +73,7 @@ nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::opt
     nlohmann::json sn_v = nlohmann::json::array();
     for (const FilmPoint& p : f.skid) sn_v.push_back({p.v * 3.6, 100 * p.mu});
     rec["sn_against_speed"] = sn_v;  // [[km/h, SN], ...]
+    if (r.band) rec["sn_band"] = {{"p05", r.band->p05}, {"p95", r.band->p95}, {"min", r.band->min}, {"max", r.band->max}};
   }
   return rec;
 }
