@@ -92,7 +92,7 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
   r.measured = std::move(sp.psd);
   r.nyquist = sp.nyquist;
   r.fit = fit_self_affine(r.measured, r.nyquist, false);
-  r.mpd = mpd_of_map(dry, std::vector<unsigned char>(dry.size(), 0), {}, s.options.threads).mpd;
+  if (s.mpd) r.mpd = mpd_of_map(dry, std::vector<unsigned char>(dry.size(), 0), {}, s.options.threads).mpd;
   std::optional<double> q1 = s.q1;
   if (s.q1_rms_slope) {
     q1 = q1_for_rms_slope(r.measured, r.nyquist, r.fit, *s.q1_rms_slope, source, "--q1");
@@ -250,7 +250,7 @@ nlohmann::json friction_run_json(const FrictionRun& r, const FrictionScene& s) {
   j["pressure"] = s.options.pressure;
   j["q0"] = r.dry_spectrum.q_start;
   j["q1"] = r.dry_spectrum.q_end;
-  j["mpd"] = r.mpd;
+  if (s.mpd) j["mpd"] = r.mpd;
   j["q1_choice"] = r.q1_choice;
   j["q_measured"] = r.dry_spectrum.q_measured;
   j["extrapolated"] = r.dry_spectrum.extrapolated();

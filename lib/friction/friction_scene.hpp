@@ -59,6 +59,7 @@ struct FrictionScene {
   // With a film: the skid number's band and tornado over these input ranges (empty: the
   // defaults of lib/friction/uncertainty.hpp); absent: none.
   std::optional<UncertaintySetup> band;
+  bool mpd = true;  // the dry map's MPD (ISO 13473-1) for the report; the sweeps record their own
 };
 
 struct FrictionCurve {

@@ -30,6 +30,7 @@ nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::opt
                                          const FrictionScene& s, int threads) {
   FrictionScene scene = s;
   scene.options.threads = threads;
+  scene.mpd = false;  // the sweep measures the surface's MPD itself
   scene.speeds = {s.speeds.front(), kIfiLowSpeed};
   const bool has_water = wet && wet->coverage > 0;
   const FrictionRun r = run_friction(ground, has_water ? wet : std::nullopt, scene, "sweep surface");
