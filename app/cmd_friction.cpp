@@ -7,7 +7,7 @@
 
 #include "app/commands.hpp"
 #include "app/print_summary.hpp"
-#include "app/q1_option.hpp"
+#include "app/friction_options.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/number_text.hpp"
 #include "lib/friction/friction_file.hpp"
@@ -218,17 +218,7 @@ int run_friction_command(const FrictionCli& c) {
   if (c.q1_opt->count()) apply_q1_option(c.q1, "--q1", s);
   if (c.speeds_opt->count() && c.range_opt->count()) throw InputError("--speeds", "give --speeds or --speed-range, not both");
   s.speeds = c.speeds_opt->count() ? c.speeds : log_speeds(c.range_opt->count() ? c.speed_range : std::vector<double>{1e-6, 100, 33});
-  if (!c.no_film) {
-    FilmScene film;
-    film.test = tyre_test(c.test);
-    if (c.film_opt->count()) {
-      check_water_film(c.water_film, "--water-film");
-      film.test.water_film = c.water_film;
-    }
-    s.film = film;
-  } else if (c.film_opt->count()) {
-    throw InputError("--water-film", "--no-film computes no film: give one or the other");
-  }
+  apply_film_options(c.no_film, *c.film_opt, c.water_film, c.test, s);
   if (c.band || !c.band_ranges.empty()) {
     if (!s.film) throw InputError("--band", "the band is the skid number's: not with --no-film");
     if (!(c.band_samples >= 4 && c.band_samples <= 10000)) throw InputError("--band-samples", "must lie in 4 ... 10000");

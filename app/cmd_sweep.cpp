@@ -12,7 +12,7 @@
 #include "app/commands.hpp"
 #include "app/launch.hpp"
 #include "app/print_summary.hpp"
-#include "app/q1_option.hpp"
+#include "app/friction_options.hpp"
 #include "app/scene_options.hpp"
 #include "app/synth_options.hpp"
 #include "lib/core/errors.hpp"
@@ -131,16 +131,7 @@ std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
   s.options.flash_temperature = c.flash;
   if (c.q1_opt->count()) apply_q1_option(c.friction_q1, "--friction-q1", s);
   s.speeds = {c.speed};
-  if (c.no_film && c.film_opt->count()) throw InputError("--water-film", "--no-film computes no film: give one or the other");
-  if (!c.no_film) {
-    FilmScene film;
-    film.test = tyre_test(c.test);
-    if (c.film_opt->count()) {
-      check_water_film(c.water_film, "--water-film");
-      film.test.water_film = c.water_film;
-    }
-    s.film = film;
-  }
+  apply_film_options(c.no_film, *c.film_opt, c.water_film, c.test, s);
   if (c.band) {
     if (!s.film) throw InputError("--band", "the band is the skid number's: not with --no-film");
     s.band = UncertaintySetup{};
