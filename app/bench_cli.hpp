@@ -3,6 +3,8 @@
 // options, and says which of them are output files (checked before the work) and inputs.
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/commands.hpp"
 
@@ -14,6 +16,7 @@ struct BenchEntry {
   const std::string* json = nullptr;   // --json, where the bench has one
   const std::string* plot = nullptr;   // --plot
   const std::string* input = nullptr;  // an input file (--surface)
+  std::vector<std::pair<std::string, const std::string*>> more_outputs;  // other output options by name
 };
 
 BenchEntry add_speed_bench(CLI::App& bench);  // app/bench_cli_surfaces.cpp
@@ -34,5 +37,7 @@ BenchEntry add_obstacle_rays_bench(CLI::App& bench);  // app/bench_cli_geometry.
 BenchEntry add_flow_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
 BenchEntry add_percolation_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
 BenchEntry add_squeeze_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
+BenchEntry add_sliding_bench(CLI::App& bench);  // app/bench_cli_sliding.cpp
+BenchEntry add_sliding_convergence_bench(CLI::App& bench);  // app/bench_cli_sliding.cpp
 
 }  // namespace wr::app

@@ -31,7 +31,8 @@ struct FrictionCli {
   CLI::Option* film_opt = nullptr;
   double temperature = 20, pressure = 3e5;
   std::vector<double> speeds, speed_range;
-  std::string q1;
+  std::string q1, model = "auto";
+  std::size_t exact_refine = kDefaultExactRefine;
   bool flash = false, quiet = false;
   int points_per_decade = 48, threads = 0;
   CLI::Option *q1_opt = nullptr, *speeds_opt = nullptr, *range_opt = nullptr;
@@ -63,7 +64,8 @@ PlotSpec curve_plot(const FrictionRun& r, const FrictionScene& s) {
     }
     return ps;
   };
-  p.series.push_back(series(r.dry, "dry"));
+  p.series.push_back(series(r.dry, r.exact ? "dry, exact steady sliding on the map" : "dry"));
+  if (r.persson_same_band) p.series.push_back(series(*r.persson_same_band, "dry, Persson on the same band"));
   if (r.wet_homogeneous) {
     char cov[64];
     std::snprintf(cov, sizeof cov, " (coverage %.0f %%)", 100 * r.coverage);
@@ -158,26 +160,46 @@ void print_band(const SkidBand& b, const std::vector<InputRange>& ranges) {
   (void)ranges;
 }
 
+// The exact rung's curve beside Persson's theory on the same band.
+void print_exact(const FrictionRun& r) {
+  const ExactStats& e = *r.exact;
+  std::printf("  exact rung: %zux%zu grid (the map's band q <= %.4g 1/m, refined x%zu), %d solves, %.1f s, at most %d iterations, "
+              "arrays %.0f MiB\n", e.nx, e.ny, e.q_band, e.refine, e.solves, e.wall_s, e.max_iterations, e.memory_bytes / 1048576.0);
+  std::printf("\n  %11s %8s %10s %10s %8s %10s\n", "v (m/s)", "mu", "A/A0", "Persson mu", "ratio", "Persson A");
+  for (std::size_t i = 0; i < r.dry.points.size(); ++i) {
+    const FrictionPoint &p = r.dry.points[i], &q = r.persson_same_band->points[i];
+    std::printf("  %11.4g %8.4f %10.4g %10.4f %8.3f %10.4g\n", p.v, p.mu, p.area_fraction, q.mu, p.mu > 0 ? q.mu / p.mu : 0.0,
+                q.area_fraction);
+  }
+}
+
 void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<std::pair<double, double>>& q1_scan) {
-  std::printf("hysteresis friction (Persson), compound: %s%s\n", s.compound.name.c_str(),
+  std::printf("hysteresis friction (%s), compound: %s%s\n",
+              r.exact ? "exact steady viscoelastic sliding on the map" : "Persson", s.compound.name.c_str(),
               s.compound.synthetic ? "  [SYNTHETIC]" : "");
+  std::printf("  model: %s (%s)\n", r.model.c_str(), r.model_reason.c_str());
   std::printf("  sigma0 %.3g Pa, T0 %.1f C, flash temperature %s\n", s.options.pressure, s.options.temperature,
               s.options.flash_temperature ? "on" : "off");
   std::printf("  cut-off q1 %.4g 1/m (%s)\n", r.dry_spectrum.q_end,
               r.q1_choice == "default" ? "default: 2 pi / 20 um or the map's last resolved wavenumber"
-              : r.q1_choice == "given" ? "given"
-                                       : (r.q1_choice + " criterion: the extrapolated spectrum's rms slope reaches it").c_str());
+              : r.q1_choice == "given"           ? "given"
+              : r.q1_choice == "the map's band"  ? "the map's band: the exact rung sees no more"
+                                                 : (r.q1_choice + " criterion: the extrapolated spectrum's rms slope reaches it").c_str());
   std::printf("  spectrum q %.3g ... %.3g 1/m, measured to %.3g 1/m%s\n", r.dry_spectrum.q_start, r.dry_spectrum.q_end,
               r.dry_spectrum.q_measured,
               r.dry_spectrum.extrapolated() ? "; above that EXTRAPOLATED along the fitted self-affine law" : "");
-  std::printf("\n  %11s %8s %10s %8s", "v (m/s)", "mu", "A/A0", "dT (K)");
-  if (r.wet_homogeneous) std::printf(" %10s %10s", "mu wet-hom", "mu wet-loc");
-  std::printf("\n");
-  for (std::size_t i = 0; i < r.dry.points.size(); ++i) {
-    const FrictionPoint& p = r.dry.points[i];
-    std::printf("  %11.4g %8.4f %10.4g %8.2f", p.v, p.mu, p.area_fraction, p.temperature_rise);
-    if (r.wet_homogeneous) std::printf(" %10.4f %10.4f", r.wet_homogeneous->points[i].mu, r.wet_local->points[i].mu);
+  if (r.exact) {
+    print_exact(r);
+  } else {
+    std::printf("\n  %11s %8s %10s %8s", "v (m/s)", "mu", "A/A0", "dT (K)");
+    if (r.wet_homogeneous) std::printf(" %10s %10s", "mu wet-hom", "mu wet-loc");
     std::printf("\n");
+    for (std::size_t i = 0; i < r.dry.points.size(); ++i) {
+      const FrictionPoint& p = r.dry.points[i];
+      std::printf("  %11.4g %8.4f %10.4g %8.2f", p.v, p.mu, p.area_fraction, p.temperature_rise);
+      if (r.wet_homogeneous) std::printf(" %10.4f %10.4f", r.wet_homogeneous->points[i].mu, r.wet_local->points[i].mu);
+      std::printf("\n");
+    }
   }
   std::printf("\n  peak: mu %.4f at v %.3g m/s\n", r.dry.peak_mu, r.dry.peak_v);
   std::printf("  at 64 km/h, drained road: mu %.4f", r.dry.at_locked_wheel.mu);
@@ -215,6 +237,9 @@ int run_friction_command(const FrictionCli& c) {
   s.options.flash_temperature = c.flash;
   s.options.points_per_decade = c.points_per_decade;
   s.options.threads = c.threads;
+  s.model = parse_hysteresis_model(c.model, "--model");
+  s.exact_refine = c.exact_refine;
+  s.progress = !c.quiet;
   if (c.q1_opt->count()) apply_q1_option(c.q1, "--q1", s);
   if (c.speeds_opt->count() && c.range_opt->count()) throw InputError("--speeds", "give --speeds or --speed-range, not both");
   s.speeds = c.speeds_opt->count() ? c.speeds : log_speeds(c.range_opt->count() ? c.speed_range : std::vector<double>{1e-6, 100, 33});
@@ -241,7 +266,7 @@ int run_friction_command(const FrictionCli& c) {
   }
   const FrictionRun r = run_friction(dry.map, wet, s, c.input);
   std::vector<std::pair<double, double>> q1_scan;
-  if (r.dry_spectrum.q_measured > 0) {
+  if (r.dry_spectrum.q_measured > 0 && !r.exact) {
     std::vector<double> q1s;
     for (int k = 0; k <= 8; ++k) q1s.push_back(r.dry_spectrum.q_measured * std::pow(10.0, k / 4.0));
     q1_scan = mu_against_q1(r, s, kLockedWheelSpeed, q1s, c.input);
@@ -257,7 +282,11 @@ int run_friction_command(const FrictionCli& c) {
     prov.parameters["test"] = s.film->test.name;
     prov.parameters["water_film"] = s.film->test.water_film;
   }
-  prov.model = std::string("hysteresis (Persson 2001; sealing: homogeneous and local)") +
+  prov.parameters["model"] = c.model;
+  prov.parameters["exact_refine"] = c.exact_refine;
+  prov.model = (r.exact ? std::string("hysteresis by exact steady viscoelastic sliding on the map (FFT boundary elements); "
+                                      "Persson 2001 on the same band beside it")
+                        : std::string("hysteresis (Persson 2001; sealing: homogeneous and local)")) +
                (s.film ? "; water film squeezed out at speed (Lorenz & Persson 2010; effective-medium flow)" : "");
   prov.timings = r.timer.to_json();
   nlohmann::json j = friction_run_json(r, s);
@@ -309,8 +338,11 @@ Command add_friction(CLI::App& root) {
       "and drainage length, --test); the asperities' load share slides with the hysteresis friction, the\n"
       "water's shears as a film. Prints SN at 20-100 km/h, the skid number at the test's speed, the speed\n"
       "constant Sp (ASTM E1960), FR60 and the hydroplaning speed.\n"
+      "--model viscoelastic solves the rubber's steady sliding over the map itself (the exact rung: no mean-field\n"
+      "approximation, docs/validation.md) on the map's own band and prints Persson's theory on the same band beside it.\n"
       "Default compound: share/compounds/synthetic-tread.json (SYNTHETIC: see its source field).\n"
-      "Example: wetroad friction road.h5 --wet road-wet.h5 --flash-temperature --plot mu.svg");
+      "Example: wetroad friction road.h5 --wet road-wet.h5 --flash-temperature --plot mu.svg\n"
+      "Example: wetroad friction road.h5 --model viscoelastic --no-film --speed-range 1e-4 10 6");
   s->add_option("surface", c->input, "the dry surface (HDF5 map or text grid)")->type_name("FILE")->required();
   s->add_option("--wet", c->wet, "the wet surface: output of `wetroad fill` (/height, /water_depth)")->type_name("FILE");
   s->add_option("--compound", c->compound, "compound JSON file (default share/compounds/synthetic-tread.json; format: docs/friction-model.md)")->type_name("FILE");
@@ -324,6 +356,17 @@ Command add_friction(CLI::App& root) {
                             "resolved wavenumber if larger), or rms-slope[:S]: where the extrapolated spectrum's rms slope "
                             "reaches S (default 1.3, Lorenz et al. 2015)")
                   ->type_name("Q1");
+  s->add_option("--model", c->model,
+                "persson: Persson's theory (milliseconds; extrapolates the spectrum to --q1); viscoelastic: exact steady "
+                "sliding of the rubber over the map itself (seconds per speed; the map's own band, isothermal, dry), "
+                "Persson's theory on the same band beside it; auto: Persson unless its model-deciding check fails on a "
+                "map whose band carries the friction")
+      ->capture_default_str();
+  s->add_option("--exact-refine", c->exact_refine,
+                "the exact rung's grid: the map Fourier-interpolated this many times finer (4: mu within about 2 % of "
+                "the grid-converged value)")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   s->add_flag("--flash-temperature", c->flash, "heat the rubber at each scale by the power the coarser scales dissipate");
   s->add_option("--points-per-decade", c->points_per_decade, "q quadrature nodes per decade")->capture_default_str();
   s->add_option("--json", c->json, "write the result as JSON (SI units)")->type_name("OUTPUT");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "lib/core/errors.hpp"
 #include "lib/core/number_text.hpp"
@@ -13,17 +14,15 @@ namespace wr {
 namespace {
 
 
-// The curve at the scene's speeds plus the locked-wheel point, its peak and skid number.
-FrictionCurve curve(const std::string& surface, const RoughnessSpectrum& psd, const FrictionScene& s,
-                    double mu_scale, double area_scale) {
+// The scene's speeds plus the locked-wheel point.
+std::vector<double> curve_speeds(const FrictionScene& s) {
   std::vector<double> speeds = s.speeds;
   speeds.push_back(kLockedWheelSpeed);
-  std::vector<FrictionPoint> pts = friction_curve(psd, s.compound, speeds, s.options);
-  for (FrictionPoint& p : pts) {
-    p.mu *= mu_scale;
-    p.mu_extrapolated *= mu_scale;
-    p.area_fraction *= area_scale;
-  }
+  return speeds;
+}
+
+// A curve from its points at curve_speeds(s): the locked-wheel point, the peak and skid number.
+FrictionCurve curve_from(const std::string& surface, std::vector<FrictionPoint> pts) {
   FrictionCurve c;
   c.surface = surface;
   c.at_locked_wheel = pts.back();
@@ -38,11 +37,37 @@ FrictionCurve curve(const std::string& surface, const RoughnessSpectrum& psd, co
   return c;
 }
 
+// Persson's curve at the scene's speeds plus the locked-wheel point, its peak and skid number.
+FrictionCurve curve(const std::string& surface, const RoughnessSpectrum& psd, const FrictionScene& s,
+                    double mu_scale, double area_scale) {
+  std::vector<FrictionPoint> pts = friction_curve(psd, s.compound, curve_speeds(s), s.options);
+  for (FrictionPoint& p : pts) {
+    p.mu *= mu_scale;
+    p.mu_extrapolated *= mu_scale;
+    p.area_fraction *= area_scale;
+  }
+  return curve_from(surface, std::move(pts));
+}
+
 std::vector<ValidityCheck> scene_checks(const FrictionRun& r, const FrictionScene& s) {
   std::vector<ValidityCheck> checks;
   const double ratio = s.options.pressure / s.compound.e_relaxed;
-  checks.push_back({"pressure well below the rubbery modulus", ratio <= kMaxPressureToModulus,
-                    "sigma0 / E_r = " + number_text(ratio) + " (limit " + number_text(kMaxPressureToModulus) + ")", true});
+  if (r.exact) {
+    const ExactStats& e = *r.exact;
+    checks.push_back({"steady sliding converged at every speed", e.converged,
+                      (e.converged ? std::string("") : e.message + "; ") + std::to_string(e.nx) + "x" + std::to_string(e.ny) +
+                          " grid (map x" + std::to_string(e.refine) + "), at most " + std::to_string(e.max_iterations) +
+                          " iterations, dissipation identity within " + number_text(e.max_identity_residual),
+                      false});
+    const double pe = r.persson_same_band->at_locked_wheel.mu, ex = r.dry.at_locked_wheel.mu;
+    checks.push_back({"Persson's theory on the same band within 20 %", std::abs(pe / ex - 1) <= 0.2,
+                      "mu at 17.9 m/s: Persson " + number_text(pe) + ", exact " + number_text(ex) + " (ratio " +
+                          number_text(pe / ex) + ")",
+                      false});
+  } else {
+    checks.push_back({"pressure well below the rubbery modulus", ratio <= kMaxPressureToModulus,
+                      "sigma0 / E_r = " + number_text(ratio) + " (limit " + number_text(kMaxPressureToModulus) + ")", true});
+  }
   const FrictionPoint& lw = r.dry.at_locked_wheel;
   const double share = lw.mu > 0 ? lw.mu_extrapolated / lw.mu : 0;
   checks.push_back({"measured band carries most of the friction", share <= 0.5,
@@ -66,7 +91,58 @@ std::vector<ValidityCheck> scene_checks(const FrictionRun& r, const FrictionScen
   return checks;
 }
 
+// Decides the rung (FrictionRun::model, model_reason); true for the exact one. The exact rung
+// has no sealing models, no flash temperature and no band (yet): asked for with them, it is
+// refused; `automatic` keeps Persson then.
+bool choose_rung(FrictionRun& r, const FrictionScene& s, bool wet) {
+  const char* missing = wet ? "--wet" : s.options.flash_temperature ? "--flash-temperature" : s.band ? "--band" : nullptr;
+  if (s.model == HysteresisModel::viscoelastic) {
+    if (missing)
+      throw InputError(missing, std::string("not with --model viscoelastic: the exact rung is isothermal, dry and without the band "
+                                            "(use --model persson)"));
+    r.model = "viscoelastic";
+    r.model_reason = "asked (--model viscoelastic)";
+    return true;
+  }
+  if (s.model == HysteresisModel::persson) {
+    r.model_reason = "asked (--model persson)";
+    return false;
+  }
+  const double ratio = s.options.pressure / s.compound.e_relaxed;
+  if (ratio <= kMaxPressureToModulus) {
+    r.model_reason = "auto: Persson's model-deciding check (pressure well below the rubbery modulus) passes";
+    return false;
+  }
+  if (r.dry_spectrum.extrapolated() || missing) {
+    r.model_reason = std::string("auto: Persson's pressure check fails, but ") +
+                     (missing ? std::string(missing) + " needs Persson's model"
+                              : "q1 lies above the map's band, which is all the exact rung sees") +
+                     ": Persson kept, flagged";
+    return false;
+  }
+  r.model = "viscoelastic";
+  r.model_reason = "auto: Persson's pressure check fails (sigma0 / E_r = " + number_text(ratio) +
+                   ") and the map's band carries the friction: the exact rung";
+  return true;
+}
+
 }  // namespace
+
+const char* hysteresis_model_name(HysteresisModel m) {
+  switch (m) {
+    case HysteresisModel::persson: return "persson";
+    case HysteresisModel::viscoelastic: return "viscoelastic";
+    case HysteresisModel::automatic: return "auto";
+  }
+  return "?";
+}
+
+HysteresisModel parse_hysteresis_model(const std::string& name, const std::string& option) {
+  if (name == "persson") return HysteresisModel::persson;
+  if (name == "viscoelastic") return HysteresisModel::viscoelastic;
+  if (name == "auto") return HysteresisModel::automatic;
+  throw InputError(option, "\"" + name + "\": give persson (Persson's theory), viscoelastic (exact steady sliding on the map) or auto");
+}
 
 std::string default_compound_path() { return std::string(WETROAD_SHARE_DIR) + "/compounds/synthetic-tread.json"; }
 
@@ -101,10 +177,41 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
     r.q1_choice = "given";
   }
   r.dry_spectrum = spectrum_from_psd(r.measured, r.nyquist, r.fit, q1, source);
-  r.timer.start("dry mu(v)");
-  r.dry = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
+  const bool exact = choose_rung(r, s, wet.has_value());
+  if (exact && r.dry_spectrum.extrapolated()) {
+    if (s.q1 || s.q1_rms_slope)
+      throw InputError("--q1", "the viscoelastic model slides over the map itself, whose band ends at " +
+                                   number_text(r.dry_spectrum.q_measured) + " 1/m; give --q1 at or below it, or --model persson");
+    r.dry_spectrum = spectrum_from_psd(r.measured, r.nyquist, r.fit, r.dry_spectrum.q_measured, source);
+    r.q1_choice = "the map's band";
+  }
+  std::function<std::vector<double>(const std::vector<double>&)> exact_mu;  // mu_h(v) by the exact rung
+  if (exact) {
+    r.timer.start("dry mu(v), exact rung");
+    ExactStats st;
+    r.dry = curve_from("dry", exact_friction_curve(dry, r.dry_spectrum.q_end, s.exact_refine, s.compound, s.options,
+                                                   curve_speeds(s), st, s.progress));
+    exact_mu = [&](const std::vector<double>& v) {
+      std::vector<double> mu;
+      ExactStats more;
+      for (const FrictionPoint& p : exact_friction_curve(dry, r.dry_spectrum.q_end, s.exact_refine, s.compound, s.options, v,
+                                                         more, s.progress))
+        mu.push_back(p.mu);
+      r.exact->converged = r.exact->converged && more.converged;
+      r.exact->max_iterations = std::max(r.exact->max_iterations, more.max_iterations);
+      r.exact->wall_s += more.wall_s;
+      r.exact->solves += more.solves;
+      return mu;
+    };
+    r.exact = st;
+    r.timer.start("dry mu(v), Persson on the same band");
+    r.persson_same_band = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
+  } else {
+    r.timer.start("dry mu(v)");
+    r.dry = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
+  }
   std::optional<RoughnessSpectrum> sealed;  // the local sealing model's spectrum
-  if (wet) {
+  if (wet && !exact) {
     if (wet->height->nx != dry.nx || wet->height->ny != dry.ny)
       throw InputError(source, "the wet surface's grid differs from the dry surface's");
     if (!(wet->coverage >= 0 && wet->coverage < 1)) throw InputError(source, "water coverage must lie in [0, 1)");
@@ -127,6 +234,7 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
     const RoughnessSpectrum& hyst = sealed ? *sealed : r.dry_spectrum;
     const double scale = sealed ? 1 - r.coverage : 1.0;
     auto mu_h = [&](const std::vector<double>& v) {
+      if (exact_mu) return exact_mu(v);
       std::vector<double> mu;
       for (const FrictionPoint& p : friction_curve(hyst, s.compound, v, s.options)) mu.push_back(scale * p.mu);
       return mu;
@@ -258,6 +366,15 @@ nlohmann::json friction_run_json(const FrictionRun& r, const FrictionScene& s) {
   j["flash_temperature"] = s.options.flash_temperature;
   j["points_per_decade"] = s.options.points_per_decade;
   j["validity"] = hysteresis_validity_json(r.checks);
+  j["rung"] = r.model;  // "persson" or "viscoelastic"
+  j["rung_chosen_by"] = r.model_reason;
+  if (r.exact) {
+    const ExactStats& e = *r.exact;
+    j["exact"] = {{"grid", {e.nx, e.ny}}, {"refine", e.refine}, {"q_band", e.q_band}, {"max_iterations", e.max_iterations},
+                  {"converged", e.converged}, {"message", e.message}, {"max_identity_residual", e.max_identity_residual},
+                  {"wall_s", e.wall_s}, {"solves", e.solves}, {"memory_bytes", e.memory_bytes},
+                  {"persson_same_band", friction_curve_json(*r.persson_same_band)}};
+  }
   if (r.wet_homogeneous) {
     j["wet"] = {{"coverage", r.coverage},
                 {"homogeneous", friction_curve_json(*r.wet_homogeneous)},

@@ -34,6 +34,7 @@
 #include "lib/contact/model_ladder.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/friction/compound.hpp"
+#include "lib/friction/exact_friction.hpp"
 #include "lib/friction/hysteresis_friction.hpp"
 #include "lib/friction/roughness_spectrum.hpp"
 #include "lib/friction/skid_at_speed.hpp"
@@ -46,7 +47,19 @@ constexpr double kLockedWheelSpeed = 17.9;  // m/s, 64 km/h (ASTM E274)
 // partial-contact picture (design.md's validity check "sigma0 much below the modulus").
 constexpr double kMaxPressureToModulus = 0.1;
 
+// Which rung computes mu(v): Persson's mean-field theory (milliseconds, the whole extrapolated
+// band), the exact steady sliding on the map (seconds per speed, the map's own band only:
+// lib/friction/exact_friction.hpp), or `automatic`: Persson unless one of its model-deciding
+// checks fails on a map whose band carries the friction (no extrapolation), then the exact rung.
+enum class HysteresisModel { persson, viscoelastic, automatic };
+const char* hysteresis_model_name(HysteresisModel m);
+// "persson", "viscoelastic" or "auto"; InputError naming `option` otherwise.
+HysteresisModel parse_hysteresis_model(const std::string& name, const std::string& option);
+
 struct FrictionScene {
+  HysteresisModel model = HysteresisModel::persson;
+  std::size_t exact_refine = kDefaultExactRefine;  // the exact rung's grid refinement
+  bool progress = false;                           // the exact rung's per-speed lines on stderr
   Compound compound;
   std::string compound_path;     // "" for the built-in default
   FrictionOptions options;       // pressure, temperature, quadrature, flash temperature, threads
@@ -92,6 +105,12 @@ struct FrictionRun {
   std::optional<SkidBand> band;
   std::vector<InputRange> band_ranges;
   std::vector<ValidityCheck> checks;  // pressure vs modulus, unmeasured share, compound origin
+  // The rung that computed the curves ("persson" or "viscoelastic") and why it was chosen.
+  std::string model = "persson";
+  std::string model_reason;
+  // With the exact rung: Persson's theory on the same band (the comparison) and the solver's record.
+  std::optional<FrictionCurve> persson_same_band;
+  std::optional<ExactStats> exact;
   PhaseTimer timer;
 };
 
