@@ -66,7 +66,11 @@ PlotSpec curve_plot(const FrictionRun& r, const FrictionScene& s) {
   };
   p.series.push_back(series(r.dry, r.exact ? "dry, exact steady sliding on the map" : "dry"));
   if (r.persson_same_band) p.series.push_back(series(*r.persson_same_band, "dry, Persson on the same band"));
-  if (r.wet_homogeneous) {
+  if (r.wet_homogeneous && r.exact) {
+    char cov[64];
+    std::snprintf(cov, sizeof cov, " (coverage %.0f %%)", 100 * r.coverage);
+    p.series.push_back(series(*r.wet_homogeneous, "wet, sealed pools as flat walls, exact" + std::string(cov)));
+  } else if (r.wet_homogeneous) {
     char cov[64];
     std::snprintf(cov, sizeof cov, " (coverage %.0f %%)", 100 * r.coverage);
     p.series.push_back(series(*r.wet_homogeneous, "wet, homogeneous sealing" + std::string(cov)));
@@ -165,11 +169,15 @@ void print_exact(const FrictionRun& r) {
   const ExactStats& e = *r.exact;
   std::printf("  exact rung: %zux%zu grid (the map's band q <= %.4g 1/m, refined x%zu), %d solves, %.1f s, at most %d iterations, "
               "arrays %.0f MiB\n", e.nx, e.ny, e.q_band, e.refine, e.solves, e.wall_s, e.max_iterations, e.memory_bytes / 1048576.0);
-  std::printf("\n  %11s %8s %10s %10s %8s %10s\n", "v (m/s)", "mu", "A/A0", "Persson mu", "ratio", "Persson A");
+  std::printf("\n  %11s %8s %10s %10s %8s %10s", "v (m/s)", "mu", "A/A0", "Persson mu", "ratio", "Persson A");
+  if (r.wet_homogeneous) std::printf(" %14s", "mu wet, sealed");
+  std::printf("\n");
   for (std::size_t i = 0; i < r.dry.points.size(); ++i) {
     const FrictionPoint &p = r.dry.points[i], &q = r.persson_same_band->points[i];
-    std::printf("  %11.4g %8.4f %10.4g %10.4f %8.3f %10.4g\n", p.v, p.mu, p.area_fraction, q.mu, p.mu > 0 ? q.mu / p.mu : 0.0,
+    std::printf("  %11.4g %8.4f %10.4g %10.4f %8.3f %10.4g", p.v, p.mu, p.area_fraction, q.mu, p.mu > 0 ? q.mu / p.mu : 0.0,
                 q.area_fraction);
+    if (r.wet_homogeneous) std::printf(" %14.4f", r.wet_homogeneous->points[i].mu);
+    std::printf("\n");
   }
 }
 
@@ -203,7 +211,9 @@ void print_run(const FrictionRun& r, const FrictionScene& s, const std::vector<s
   }
   std::printf("\n  peak: mu %.4f at v %.3g m/s\n", r.dry.peak_mu, r.dry.peak_v);
   std::printf("  at 64 km/h, drained road: mu %.4f", r.dry.at_locked_wheel.mu);
-  if (r.wet_homogeneous)
+  if (r.wet_homogeneous && r.exact)
+    std::printf("; wet (coverage %.1f %%), sealed pools as flat walls: %.4f", 100 * r.coverage, r.wet_homogeneous->at_locked_wheel.mu);
+  else if (r.wet_homogeneous)
     std::printf("; wet (coverage %.1f %%): homogeneous %.4f, local %.4f", 100 * r.coverage, r.wet_homogeneous->at_locked_wheel.mu,
                 r.wet_local->at_locked_wheel.mu);
   std::printf("\n");
@@ -339,7 +349,8 @@ Command add_friction(CLI::App& root) {
       "water's shears as a film. Prints SN at 20-100 km/h, the skid number at the test's speed, the speed\n"
       "constant Sp (ASTM E1960), FR60 and the hydroplaning speed.\n"
       "--model viscoelastic solves the rubber's steady sliding over the map itself (the exact rung: no mean-field\n"
-      "approximation, docs/validation.md) on the map's own band and prints Persson's theory on the same band beside it.\n"
+      "approximation, docs/validation.md) on the map's own band and prints Persson's theory on the same band beside it;\n"
+      "with --wet it slides over the sealed surface (pools as flat walls): one exact answer for both sealing models.\n"
       "Default compound: share/compounds/synthetic-tread.json (SYNTHETIC: see its source field).\n"
       "Example: wetroad friction road.h5 --wet road-wet.h5 --flash-temperature --plot mu.svg\n"
       "Example: wetroad friction road.h5 --model viscoelastic --no-film --speed-range 1e-4 10 6");

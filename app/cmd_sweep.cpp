@@ -40,7 +40,8 @@ struct SweepCommonCli {
   bool no_film = false, band = false;
   CLI::Option* film_opt = nullptr;
   double pressure = 3e5, temperature = 20, speed = kLockedWheelSpeed;
-  std::string friction_q1;
+  std::string friction_q1, hysteresis_model = "persson";
+  std::size_t exact_refine = kDefaultExactRefine;
   bool flash = false;
   CLI::Option* q1_opt = nullptr;
   int threads = 0;
@@ -76,7 +77,14 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
           ->type_name("FILE")
           ->capture_default_str(),
       s.add_flag("--no-film", c.no_film, "hysteresis: no water film, the drained road's hysteresis friction only"),
-      s.add_flag("--band", c.band, "hysteresis: each run's skid-number band over the inputs' default ranges (as `friction --band`)")};
+      s.add_flag("--band", c.band, "hysteresis: each run's skid-number band over the inputs' default ranges (as `friction --band`)"),
+      s.add_option("--hysteresis-model", c.hysteresis_model,
+                   "hysteresis: persson (Persson's theory), viscoelastic (exact steady sliding on each map, seconds per "
+                   "speed, the map's band) or auto (as `friction --model`)")
+          ->capture_default_str(),
+      s.add_option("--exact-refine", c.exact_refine, "hysteresis: the exact rung's grid refinement (as `friction --exact-refine`)")
+          ->check(CLI::Range(1, 16))
+          ->capture_default_str()};
   s.add_option("--threads", c.threads, "threads of one process (ignored under mpirun: one rank per core)")->check(CLI::NonNegativeNumber);
   s.add_option("--out", c.out, "result HDF5 (table, every run, provenance); OUT.runs/ holds the checkpoint")->type_name("OUTPUT")->required();
   s.add_option("--csv", c.csv, "also write the table as CSV")->type_name("OUTPUT");
@@ -129,6 +137,8 @@ std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
   s.options.pressure = c.pressure;
   s.options.temperature = c.temperature;
   s.options.flash_temperature = c.flash;
+  s.model = parse_hysteresis_model(c.hysteresis_model, "--hysteresis-model");
+  s.exact_refine = c.exact_refine;
   if (c.q1_opt->count()) apply_q1_option(c.friction_q1, "--friction-q1", s);
   s.speeds = {c.speed};
   apply_film_options(c.no_film, *c.film_opt, c.water_film, c.test, s);

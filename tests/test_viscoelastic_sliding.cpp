@@ -5,11 +5,14 @@
 #include <cmath>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "lib/friction/compound.hpp"
 #include "lib/friction/friction_scene.hpp"
 #include "lib/spectral/normal_contact.hpp"
 #include "lib/spectral/viscoelastic_sliding.hpp"
 #include "lib/core/errors.hpp"
+#include "tests/cli_fixture.hpp"
 #include "roads/band_limit.hpp"
 #include "roads/synthesize.hpp"
 
@@ -188,6 +191,53 @@ TEST(ViscoelasticSliding, AnUnfinishedSolveSaysSo) {
   EXPECT_THROW(ViscoelasticSliding(road(32, 1, 1e-5, 8), c, -200, o), InputError);  // below the WLF pole
 }
 
+// Partial contact against the closed-form steady state of a rigid cylinder on a standard linear
+// solid in plane strain (Hunter, J. Appl. Mech. 28, 611 (1961)): the rolling resistance e/a0 =
+// mu R / a0 and the contact half-width, as re-derived and checked against an independent
+// real-space boundary-element solution (docs/validation.md, "The exact rung"; the table there
+// gives the source of each number). The cylinder is the crest of a long cosine, period 80 a0,
+// whose curvature at the crest is 1/R (its x^4 term changes the profile by 5e-4 over the
+// contact); the profile, being one Fourier mode, has an exact spectral slope.
+TEST(ViscoelasticSliding, RollingCylinderOnAStandardLinearSolidMatchesHunter) {
+  struct Case {
+    double k, vt_over_a0, mu_r_over_a0, a_over_a0, b_over_a0;
+  };
+  const double e_relaxed = 6e6, nu = 0.5, radius = 0.01, a0 = 1e-3, v = 1.0;
+  const double e_star = e_relaxed / (1 - nu * nu);
+  const double load = std::numbers::pi * e_star * a0 * a0 / (4 * radius);  // N/m: the relaxed Hertz half-width a0
+  const double period = 80 * a0;
+  const std::size_t n = 16384;
+  for (const Case& c : {Case{10, 1.0, 0.46391, 0.91834, 0.28349}, Case{3, 1.1359, 0.29110, 0.91972, 0.48307}}) {
+    Compound sls = tread();
+    sls.e_relaxed = e_relaxed;
+    sls.poisson = nu;
+    const double retardation = c.vt_over_a0 * a0 / v, relaxation = retardation / c.k;
+    sls.terms = {PronyTerm{relaxation, (c.k - 1) * e_relaxed}};
+    HeightMap m(n, 1, period / double(n), period / double(n), HeightMap::Kind::profile);
+    const double amplitude = period * period / (4 * std::numbers::pi * std::numbers::pi * radius);
+    for (std::size_t i = 0; i < n; ++i) m.h[i] = amplitude * std::cos(2 * std::numbers::pi * (double(i) / double(n) - 0.5));
+    ViscoelasticSliding s(m, sls, sls.reference_temperature, options());
+    const SlidingResult r = s.solve(v, load / period);
+    ASSERT_TRUE(r.converged) << r.message;
+    const double mu_r_over_a0 = r.mu * radius / a0;
+    EXPECT_NEAR(mu_r_over_a0, c.mu_r_over_a0, 0.01 * c.mu_r_over_a0) << "k " << c.k;
+    // The contact's ends, measured from the crest (the leading edge is upstream, at -a).
+    double lead = 0, trail = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.pressure()[i] > 0) {
+        const double x = (double(i) - double(n) / 2) * m.dx / a0;
+        lead = std::max(lead, -x);
+        trail = std::max(trail, x);
+      }
+    const double cell = m.dx / a0;
+    std::printf("Hunter k %g, VT/a0 %g: mu R/a0 %.5f (closed form %.5f), a/a0 %.4f (%.5f), b/a0 %.4f (%.5f), %d iterations\n", c.k,
+                c.vt_over_a0, mu_r_over_a0, c.mu_r_over_a0, lead, c.a_over_a0, trail, c.b_over_a0, r.iterations);
+    EXPECT_NEAR(lead, c.a_over_a0, 2 * cell) << "k " << c.k;
+    EXPECT_NEAR(trail, c.b_over_a0, 2 * cell) << "k " << c.k;
+    EXPECT_LT(r.identity_residual, 0.01);
+  }
+}
+
 // The band limit: sampled back on the coarse points, the refined map is the coarse one.
 TEST(BandLimit, RefinedMapPassesThroughTheCoarsePoints) {
   const HeightMap m = road(64, 3, 3e-4, 8);
@@ -210,6 +260,72 @@ TEST(BandLimit, RefinedMapPassesThroughTheCoarsePoints) {
     for (double h : m.h) p += h * h;
     return p;
   }());
+}
+
+}  // namespace
+
+// The rung on the command line: `friction --model viscoelastic|auto` and the sweeps.
+namespace {
+
+class ExactRungCli : public wr_test::Cli {};
+
+TEST_F(ExactRungCli, FrictionRunsTheExactRungBesidePerssonOnTheSameBand) {
+  ASSERT_EQ(run("synth --size 64 --dx 4.7e-4 --h0 3e-4 --seed 2 -q -o " + path("s.h5")).code, 0);
+  const auto r = run("friction " + path("s.h5") + " --model viscoelastic --no-film --speeds 0.01 1 --exact-refine 2 --json " +
+                     path("f.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("Persson mu"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(path("f.json")));
+  EXPECT_EQ(j["rung"], "viscoelastic");
+  EXPECT_FALSE(j["extrapolated"].get<bool>());
+  EXPECT_EQ(j["exact"]["grid"][0], 128);
+  EXPECT_TRUE(j["exact"]["converged"].get<bool>());
+  const double mu = j["speeds"][1]["mu"].get<double>(), pe = j["exact"]["persson_same_band"]["speeds"][1]["mu"].get<double>();
+  EXPECT_GT(mu, 0.01);
+  EXPECT_GT(pe / mu, 0.5);  // the two rungs agree within a factor 2 (docs/validation.md)
+  EXPECT_LT(pe / mu, 2.0);
+  EXPECT_GT(j["speeds"][1]["mu"].get<double>(), j["speeds"][0]["mu"].get<double>());
+}
+
+TEST_F(ExactRungCli, AutoKeepsPerssonUnlessItsCheckFailsOnAMeasuredBand) {
+  ASSERT_EQ(run("synth --size 64 --dx 4.7e-4 --h0 3e-4 --seed 2 -q -o " + path("s.h5")).code, 0);
+  auto rung = [&](const std::string& extra) {
+    const auto r = run("friction " + path("s.h5") + " --no-film --speeds 0.1 --exact-refine 1 -q --json " + path("a.json") + " " + extra);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(slurp(path("a.json")))["rung"].get<std::string>();
+  };
+  EXPECT_EQ(rung(""), "persson");                       // default pressure: the check passes
+  EXPECT_EQ(rung("--pressure 1e6"), "persson");         // fails, but q1 is extrapolated past the map
+  EXPECT_EQ(rung("--pressure 1e6 --q1 5000"), "viscoelastic");  // fails on the map's own band
+  EXPECT_EQ(rung("--pressure 1e6 --q1 5000 --model persson"), "persson");
+}
+
+TEST_F(ExactRungCli, RefusesWhatTheExactRungCannotDo) {
+  ASSERT_EQ(run("synth --size 32 --dx 9e-4 --h0 3e-4 --seed 2 -q -o " + path("s.h5")).code, 0);
+  const std::string base = "friction " + path("s.h5") + " --no-film --speeds 0.1 --json " + path("x.json") + " ";
+  for (const auto& [args, option] : std::vector<std::pair<std::string, std::string>>{
+           {"--model viscoelastic --q1 1e6", "--q1"},
+           {"--model viscoelastic --flash-temperature", "--flash-temperature"},
+           {"--model bogus", "--model"},
+           {"--model viscoelastic --exact-refine 0", "--exact-refine"}}) {
+    const auto r = run(base + args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(path("x.json")));
+  }
+}
+
+TEST_F(ExactRungCli, SweepsTakeTheRung) {
+  const auto r = run("sweep-coverage --model hysteresis --hysteresis-model viscoelastic --exact-refine 1 --size 48 --coverages 0 0.3 "
+                     "--no-film -q --out " + path("sw.h5") + " --json " + path("sw.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("sw.json")));
+  ASSERT_FALSE(j["runs"].empty());
+  for (const auto& run : j["runs"]) {
+    EXPECT_EQ(run["contact"]["rung"], "viscoelastic") << run.dump();
+    EXPECT_TRUE(run["contact"].contains("mu_persson_same_band"));
+  }
 }
 
 }  // namespace

@@ -91,14 +91,31 @@ std::vector<ValidityCheck> scene_checks(const FrictionRun& r, const FrictionScen
   return checks;
 }
 
+void check_wet_grid(const HeightMap& dry, const WetSurface& wet, const std::string& source) {
+  if (wet.height->nx != dry.nx || wet.height->ny != dry.ny)
+    throw InputError(source, "the wet surface's grid differs from the dry surface's");
+  if (!(wet.coverage >= 0 && wet.coverage < 1)) throw InputError(source, "water coverage must lie in [0, 1)");
+}
+
+// The record of more solves of the exact rung added to `into`.
+void merge_exact_stats(ExactStats& into, const ExactStats& more) {
+  if (into.converged && !more.converged) into.message = more.message;
+  into.converged = into.converged && more.converged;
+  into.max_iterations = std::max(into.max_iterations, more.max_iterations);
+  into.max_identity_residual = std::max(into.max_identity_residual, more.max_identity_residual);
+  into.wall_s += more.wall_s;
+  into.solves += more.solves;
+}
+
 // Decides the rung (FrictionRun::model, model_reason); true for the exact one. The exact rung
 // has no sealing models, no flash temperature and no band (yet): asked for with them, it is
 // refused; `automatic` keeps Persson then.
 bool choose_rung(FrictionRun& r, const FrictionScene& s, bool wet) {
-  const char* missing = wet ? "--wet" : s.options.flash_temperature ? "--flash-temperature" : s.band ? "--band" : nullptr;
+  (void)wet;  // the exact rung slides over the sealed wet surface itself
+  const char* missing = s.options.flash_temperature ? "--flash-temperature" : s.band ? "--band" : nullptr;
   if (s.model == HysteresisModel::viscoelastic) {
     if (missing)
-      throw InputError(missing, std::string("not with --model viscoelastic: the exact rung is isothermal, dry and without the band "
+      throw InputError(missing, std::string("not with --model viscoelastic: the exact rung is isothermal and has no band yet "
                                             "(use --model persson)"));
     r.model = "viscoelastic";
     r.model_reason = "asked (--model viscoelastic)";
@@ -191,19 +208,29 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
     ExactStats st;
     r.dry = curve_from("dry", exact_friction_curve(dry, r.dry_spectrum.q_end, s.exact_refine, s.compound, s.options,
                                                    curve_speeds(s), st, s.progress));
+    r.exact = st;
+    if (wet) {
+      // The sealed pools as flat rigid walls (the sealing's assumptions A1-A3, solved): one exact
+      // answer where Persson's theory needs two models, so both wet curves hold it.
+      check_wet_grid(dry, *wet, source);
+      r.coverage = wet->coverage;
+      r.timer.start("wet mu(v), exact rung");
+      ExactStats ws;
+      r.wet_homogeneous = curve_from("wet-sealed", exact_friction_curve(*wet->height, r.dry_spectrum.q_end, s.exact_refine,
+                                                                        s.compound, s.options, curve_speeds(s), ws, s.progress));
+      r.wet_local = r.wet_homogeneous;
+      merge_exact_stats(*r.exact, ws);
+    }
+    const HeightMap& hyst_map = wet ? *wet->height : dry;
     exact_mu = [&](const std::vector<double>& v) {
       std::vector<double> mu;
       ExactStats more;
-      for (const FrictionPoint& p : exact_friction_curve(dry, r.dry_spectrum.q_end, s.exact_refine, s.compound, s.options, v,
+      for (const FrictionPoint& p : exact_friction_curve(hyst_map, r.dry_spectrum.q_end, s.exact_refine, s.compound, s.options, v,
                                                          more, s.progress))
         mu.push_back(p.mu);
-      r.exact->converged = r.exact->converged && more.converged;
-      r.exact->max_iterations = std::max(r.exact->max_iterations, more.max_iterations);
-      r.exact->wall_s += more.wall_s;
-      r.exact->solves += more.solves;
+      merge_exact_stats(*r.exact, more);
       return mu;
     };
-    r.exact = st;
     r.timer.start("dry mu(v), Persson on the same band");
     r.persson_same_band = curve("dry", r.dry_spectrum, s, 1.0, 1.0);
   } else {
@@ -212,9 +239,7 @@ FrictionRun run_friction(const HeightMap& dry, const std::optional<WetSurface>& 
   }
   std::optional<RoughnessSpectrum> sealed;  // the local sealing model's spectrum
   if (wet && !exact) {
-    if (wet->height->nx != dry.nx || wet->height->ny != dry.ny)
-      throw InputError(source, "the wet surface's grid differs from the dry surface's");
-    if (!(wet->coverage >= 0 && wet->coverage < 1)) throw InputError(source, "water coverage must lie in [0, 1)");
+    check_wet_grid(dry, *wet, source);
     r.coverage = wet->coverage;
     const double phi = 1 - wet->coverage;
     r.timer.start("wet spectrum");

@@ -6,6 +6,8 @@ namespace wr {
 
 nlohmann::json friction_scene_json(const FrictionScene& s) {
   return {{"model", "hysteresis"},
+          {"hysteresis_model", hysteresis_model_name(s.model)},
+          {"exact_refine", s.exact_refine},
           {"compound", compound_to_json(s.compound)},
           {"compound_path", s.compound_path},
           {"pressure", s.options.pressure},
@@ -55,7 +57,10 @@ nlohmann::json hysteresis_contact_record(const HeightMap& ground, const std::opt
           {"extrapolated", r.dry_spectrum.extrapolated()},
           {"failed", false},
           {"message", ""},
-          {"validity", hysteresis_validity_json(r.checks)}};
+          {"validity", hysteresis_validity_json(r.checks)},
+          {"rung", r.model},
+          {"rung_chosen_by", r.model_reason}};
+  if (r.exact) rec["mu_persson_same_band"] = r.persson_same_band->points.front().mu;
   if (r.film) {
     // Under the film: mu at the sweep's speed and at 20 km/h are the wet friction at speed; the
     // drained road's hysteresis friction stays as mu_drained.
