@@ -80,6 +80,11 @@ validate: build
 	OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 $(BUILD_DIR)/bin/wetroad bench mesh-convergence \
 	  --surface $(BUILD_DIR)/d32.h5 --refines 1 2 4 8 --tol 1e-4 --json $(BUILD_DIR)/mesh-convergence.json \
 	  --plot $(BUILD_DIR)/mesh-convergence.svg
+	$(BUILD_DIR)/bin/wetroad bench sliding --size 1024 --band 64 --seeds 1 2 3 --pressures 1e5 3e5 \
+	  --json $(BUILD_DIR)/sliding.json --plot $(BUILD_DIR)/exact-rung-mu-v.svg --plot-ratio $(BUILD_DIR)/exact-rung-ratio.svg
+	$(BUILD_DIR)/bin/wetroad bench sliding-convergence --band 64 --sizes 512 1024 2048 --speeds 1e-4 1e-2 1 10 \
+	  --json $(BUILD_DIR)/sliding-convergence.json --ladder-plot $(BUILD_DIR)/friction-ladder.svg \
+	  --fem-json $(BUILD_DIR)/mesh-convergence.json
 
 clean:
 	rm -rf $(BUILD_DIR)

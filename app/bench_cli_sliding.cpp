@@ -4,8 +4,10 @@
 #include <memory>
 
 #include "app/bench_cli.hpp"
+#include "lib/core/errors.hpp"
 #include "bench/bench_sliding.hpp"
 #include "lib/io/atomic_output.hpp"
+#include "lib/io/input_file.hpp"
 #include "reports/plot.hpp"
 
 namespace wr::app {
@@ -80,10 +82,70 @@ struct ConvergenceCli {
   bench::SlidingBenchSetup setup;
   std::vector<std::size_t> sizes = {256, 512, 1024};
   std::vector<double> speeds = {1e-4, 1e-2, 1.0};
-  std::string json;
+  std::string json, ladder_plot, fem_json;
 };
 
+// The friction ladder's speed against accuracy: wall time per speed against the relative error to
+// the grid-converged exact friction (Richardson's limit), for Persson's theory and the exact rung
+// on each grid; the FEM's elastostatic friction (another mechanism) against its own mesh limit
+// from `bench mesh-convergence --json`.
+void write_ladder_plot(const std::string& path, const nlohmann::json& r, const std::string& fem_json) {
+  PlotSpec p{"friction ladder: time per speed against the error to the converged answer", "wall time per speed (s)",
+             "relative error", true, true, {}};
+  p.key = "bottom left";
+  std::vector<double> limits;
+  for (const auto& e : r["estimates"]) limits.push_back(e.contains("limit") && !e["limit"].is_null() ? e["limit"].get<double>() : 0.0);
+  PlotSeries persson{"Persson's theory, each speed", {}, {}, "points", {}};
+  for (std::size_t i = 0; i < limits.size(); ++i)
+    if (limits[i] > 0) {
+      persson.x.push_back(r["persson"][i]["wall_s"].get<double>());
+      persson.y.push_back(std::abs(r["persson"][i]["mu"].get<double>() / limits[i] - 1));
+    }
+  p.series.push_back(persson);
+  for (std::size_t i = 0; i < limits.size(); ++i) {
+    if (limits[i] <= 0) continue;
+    char label[80];
+    std::snprintf(label, sizeof label, "exact, v %.3g m/s (%zu^2 ... %zu^2)", r["estimates"][i]["v"].get<double>(),
+                  r["grids"].front()["n"].get<std::size_t>(), r["grids"].back()["n"].get<std::size_t>());
+    PlotSeries ex{label, {}, {}, "linespoints", {}};
+    for (const auto& g : r["grids"]) {
+      const auto& pt = g["points"][i];
+      const double err = std::abs(pt["mu"].get<double>() / limits[i] - 1);
+      if (err <= 0) continue;
+      ex.x.push_back(pt["wall_s"].get<double>());
+      ex.y.push_back(err);
+    }
+    p.series.push_back(ex);
+  }
+  if (!fem_json.empty()) {
+    nlohmann::json f;
+    try {
+      f = nlohmann::json::parse(read_input_file(fem_json, "FEM mesh-convergence JSON"));
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(fem_json, std::string("not the JSON of `bench mesh-convergence`: ") + e.what());
+    }
+    if (!f.contains("meshes") || !f.contains("extrapolations"))
+      throw InputError(fem_json, "not the JSON of `bench mesh-convergence` (no meshes and extrapolations)");
+    double limit = 0;
+    for (const auto& e : f["extrapolations"])
+      if (e.contains("mu") && e["mu"].contains("limit")) limit = e["mu"]["limit"].get<double>();
+    PlotSeries fem{"FEM elastostatic mu (a shear test), to its mesh limit", {}, {}, "linespoints", {}};
+    for (const auto& m : f["meshes"])
+      if (limit > 0 && m.contains("mu") && m.contains("wall_s")) {
+        fem.x.push_back(m["wall_s"].get<double>());
+        fem.y.push_back(std::max(std::abs(m["mu"].get<double>() / limit - 1), 1e-6));
+      }
+    if (!fem.x.empty()) p.series.push_back(fem);
+  }
+  write_svg_plot(path, p);
+}
+
 int run_convergence_bench(const ConvergenceCli& c) {
+  for (std::size_t k = 0; k < c.sizes.size(); ++k)
+    if (c.sizes[k] % c.sizes.front() != 0 || (k > 0 && c.sizes[k] <= c.sizes[k - 1]))
+      throw InputError("--sizes", "give ascending sizes, each a multiple of the first (the same surface, refined)");
+  if (double(c.sizes.front()) < 2 * c.setup.band)
+    throw InputError("--sizes", "the first grid must resolve the band: at least 2 x --band points per side");
   std::fprintf(stderr, "steady viscoelastic sliding: grid convergence on one band\n");
   const nlohmann::json r = bench::sliding_grid_convergence(c.setup, c.sizes, c.speeds);
   std::printf("grid convergence of the exact rung (band q1 = %g qL, seed %llu, sigma0 %.3g Pa)\n", c.setup.band,
@@ -99,6 +161,10 @@ int run_convergence_bench(const ConvergenceCli& c) {
     if (e.contains("finest_change")) std::printf("  last refinement changed mu by %.2f %%", 100 * e["finest_change"].get<double>());
     std::printf("\n");
   }
+  std::printf("  Persson's theory on the same band:");
+  for (const auto& q : r["persson"]) std::printf(" v %.3g: %.5f (%.2g s)", q["v"].get<double>(), q["mu"].get<double>(), q["wall_s"].get<double>());
+  std::printf("\n");
+  if (!c.ladder_plot.empty()) write_ladder_plot(c.ladder_plot, r, c.fem_json);
   if (!c.json.empty()) write_text_atomically(c.json, r.dump(2) + "\n");
   return 0;
 }
@@ -142,7 +208,12 @@ BenchEntry add_sliding_convergence_bench(CLI::App& bench) {
   s->add_option("--seed", st.seeds.front(), "surface seed")->capture_default_str();
   add_scene_options(s, st);
   s->add_option("--json", o->json, "write the results as JSON")->type_name("OUTPUT");
-  return {s, [o] { return run_convergence_bench(*o); }, &o->json, nullptr, nullptr};
+  s->add_option("--ladder-plot", o->ladder_plot,
+                "chart the friction ladder's time per speed against the error to the converged exact mu (SVG)")
+      ->type_name("OUTPUT");
+  s->add_option("--fem-json", o->fem_json, "the FEM's elastostatic series for the ladder chart: `bench mesh-convergence --json`")
+      ->type_name("FILE");
+  return {s, [o] { return run_convergence_bench(*o); }, &o->json, &o->ladder_plot, &o->fem_json};
 }
 
 }  // namespace wr::app

@@ -175,6 +175,23 @@ nlohmann::json sliding_grid_convergence(const SlidingBenchSetup& s, const std::v
     grids.push_back({{"n", n}, {"points_per_shortest_wavelength", double(n) / s.band}, {"memory_bytes", solver.memory_bytes()},
                      {"points", pts}});
   }
+  // Persson's theory on the same map's band at the same speeds (best of 3 timings).
+  const MapSpectrum spec = map_spectrum(base, s.threads);
+  const RoughnessSpectrum band = spec.upto(2 * std::numbers::pi / kTile * s.band);
+  nlohmann::json persson = nlohmann::json::array();
+  FrictionOptions fo;
+  fo.pressure = pressure;
+  fo.temperature = s.temperature;
+  fo.threads = 1;
+  for (double v : speeds) {
+    double best = 1e300, mu_p = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double t0 = now();
+      mu_p = hysteresis_friction(band, compound, v, fo).mu;
+      best = std::min(best, now() - t0);
+    }
+    persson.push_back({{"v", v}, {"mu", mu_p}, {"wall_s", best}});
+  }
   nlohmann::json est = nlohmann::json::array();
   for (std::size_t i = 0; i < speeds.size(); ++i) {
     nlohmann::json e = {{"v", speeds[i]}, {"mu", mu[i]}, {"area_fraction", area[i]}};
@@ -193,7 +210,7 @@ nlohmann::json sliding_grid_convergence(const SlidingBenchSetup& s, const std::v
     }
     est.push_back(e);
   }
-  return {{"band", s.band}, {"seed", seed}, {"pressure", pressure}, {"grids", grids}, {"estimates", est},
+  return {{"band", s.band}, {"seed", seed}, {"pressure", pressure}, {"grids", grids}, {"estimates", est}, {"persson", persson},
           {"peak_rss_bytes", double(peak_rss_bytes())}};
 }
 

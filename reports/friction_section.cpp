@@ -86,6 +86,42 @@ std::string film_html(const nlohmann::json& f, const std::string& chart_dir) {
 
 }  // namespace
 
+// The exact rung's run: its curve beside Persson's theory on the same band, and the ladder's speed
+// against accuracy on this surface (Persson's deviation from the exact answer at each speed; the
+// exact rung's own error indicator, the dissipation identity's residual).
+std::string exact_rung_html(const nlohmann::json& j, const std::string& chart_dir) {
+  const auto& e = j["exact"];
+  const auto& pe = e["persson_same_band"];
+  std::ostringstream o;
+  o << "<h3>The exact rung: steady viscoelastic sliding on the map</h3>\n<p>Chosen: " << escape(j.value("rung_chosen_by", ""))
+    << ". The rubber's steady sliding over the map itself (FFT boundary elements with the complex modulus, "
+    << e["grid"][0].get<std::size_t>() << "&times;" << e["grid"][1].get<std::size_t>() << " grid, the map's band to "
+    << fmt(num(e["q_band"]), "%.4g") << " 1/m), beside Persson's theory on the same band. "
+    << (e.value("converged", false) ? "Converged at every speed" : "<span class=\"flag\">NOT converged: " + escape(e.value("message", "")) + "</span>")
+    << "; dissipation identity within " << fmt(num(e["max_identity_residual"]), "%.2g") << ".</p>\n";
+  PlotSpec ladder{"speed against accuracy of the friction ladder on this surface", "wall time per speed [s]",
+                  "relative deviation from the exact rung", true, true, {}};
+  double persson_time = 0;
+  for (const auto& [phase, t] : j["timings"].items())
+    if (phase.find("Persson on the same band") != std::string::npos) persson_time = num(t.is_object() ? t["wall_s"] : t);
+  const double speeds = double(j["speeds"].size() + 1);
+  PlotSeries ps{"Persson's theory, each speed", {}, {}, "points", {}};
+  for (std::size_t i = 0; i < j["speeds"].size(); ++i) {
+    const double mu = num(j["speeds"][i]["mu"]), mp = num(pe["speeds"][i]["mu"]);
+    if (mu > 0 && mp != mu) ps.x.push_back(std::max(persson_time / speeds, 1e-6)), ps.y.push_back(std::abs(mp / mu - 1));
+  }
+  const double solves = std::max(1.0, num(e["solves"]));
+  PlotSeries ex{"exact rung (its dissipation-identity residual)", {num(e["wall_s"]) / solves},
+                {std::max(num(e["max_identity_residual"]), 1e-6)}, "points pt 7 ps 2", {}};
+  ladder.series = {ps, ex};
+  ladder.key = "top right";
+  const std::string chart = chart_dir + "/friction_ladder.svg";
+  write_svg_plot(chart, ladder);
+  o << html::figure(chart, "Time per speed against accuracy: Persson's theory's deviation from the exact answer at each speed, "
+                           "and the exact rung's own error indicator.");
+  return o.str();
+}
+
 std::string friction_section_html(const std::string& file, const nlohmann::json& j, const std::string& chart_dir) {
   std::filesystem::create_directories(chart_dir);
   const auto& comp = j["compound"];
@@ -103,8 +139,13 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
     << ".</p>\n";
   PlotSpec spec{"mu(v), " + std::string(flash ? "flash temperature" : "isothermal"), "sliding speed v [m/s]", "mu", true,
                 false, {}};
-  spec.series.push_back(curve_series(j, "dry"));
-  if (wet) {
+  const bool exact = j.value("rung", std::string("persson")) == "viscoelastic" && j.contains("exact");
+  spec.series.push_back(curve_series(j, exact ? "dry, exact steady sliding on the map" : "dry"));
+  if (exact) spec.series.push_back(curve_series(j["exact"]["persson_same_band"], "dry, Persson on the same band"));
+  if (wet && exact) {
+    const std::string cov = " (coverage " + std::to_string(static_cast<int>(100 * num(j["wet"]["coverage"]) + 0.5)) + " %)";
+    spec.series.push_back(curve_series(j["wet"]["homogeneous"], "wet, sealed pools as flat walls, exact" + cov));
+  } else if (wet) {
     const std::string cov = " (coverage " + std::to_string(static_cast<int>(100 * num(j["wet"]["coverage"]) + 0.5)) + " %)";
     spec.series.push_back(curve_series(j["wet"]["homogeneous"], "wet, homogeneous sealing" + cov));
     spec.series.push_back(curve_series(j["wet"]["local"], "wet, local sealing" + cov));
@@ -112,6 +153,7 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
   const std::string chart = chart_dir + "/mu_v.svg";
   write_svg_plot(chart, spec);
   o << html::figure(chart, "Hysteresis friction against sliding speed, dry and on the wet surface.");
+  if (exact) o << exact_rung_html(j, chart_dir);
   o << "<ul><li>dry: peak &mu; " << fmt(num(j["peak"]["mu"])) << " at " << fmt(num(j["peak"]["v"]), "%.3g")
     << " m/s; at 64 km/h &mu; " << fmt(num(j["locked_wheel"]["mu"]))
     << " (a dry road has no skid number), flash temperature rise " << fmt(num(j["locked_wheel"]["temperature_rise"]), "%.1f") << " K</li>";

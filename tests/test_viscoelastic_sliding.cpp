@@ -287,6 +287,17 @@ TEST_F(ExactRungCli, FrictionRunsTheExactRungBesidePerssonOnTheSameBand) {
   EXPECT_GT(j["speeds"][1]["mu"].get<double>(), j["speeds"][0]["mu"].get<double>());
 }
 
+TEST_F(ExactRungCli, TheReportShowsTheRungBesidePerssonAndTheLadder) {
+  ASSERT_EQ(run("synth --size 48 --dx 6.25e-4 --h0 3e-4 --seed 4 -q -o " + path("s.h5")).code, 0);
+  ASSERT_EQ(run("friction " + path("s.h5") + " --model viscoelastic --speeds 0.01 1 --exact-refine 2 -q --out " + path("f.h5")).code, 0);
+  const auto r = run("report --friction " + path("f.h5") + " -q -o " + path("r.html"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = slurp(path("r.html"));
+  EXPECT_NE(html.find("The exact rung: steady viscoelastic sliding on the map"), std::string::npos);
+  EXPECT_NE(html.find("Persson on the same band"), std::string::npos);
+  EXPECT_NE(html.find("speed against accuracy of the friction ladder"), std::string::npos);
+}
+
 TEST_F(ExactRungCli, AutoKeepsPerssonUnlessItsCheckFailsOnAMeasuredBand) {
   ASSERT_EQ(run("synth --size 64 --dx 4.7e-4 --h0 3e-4 --seed 2 -q -o " + path("s.h5")).code, 0);
   auto rung = [&](const std::string& extra) {
