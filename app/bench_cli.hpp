@@ -16,7 +16,7 @@ struct BenchEntry {
   const std::string* json = nullptr;   // --json, where the bench has one
   const std::string* plot = nullptr;   // --plot
   const std::string* input = nullptr;  // an input file (--surface)
-  std::vector<std::pair<std::string, const std::string*>> more_outputs;  // other output options by name
+  std::vector<std::pair<std::string, const std::string*>> more_outputs = {};  // other output options by name
 };
 
 BenchEntry add_speed_bench(CLI::App& bench);  // app/bench_cli_surfaces.cpp
@@ -39,5 +39,6 @@ BenchEntry add_percolation_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
 BenchEntry add_squeeze_bench(CLI::App& bench);  // app/bench_cli_flow.cpp
 BenchEntry add_sliding_bench(CLI::App& bench);  // app/bench_cli_sliding.cpp
 BenchEntry add_sliding_convergence_bench(CLI::App& bench);  // app/bench_cli_sliding.cpp
+BenchEntry add_fem_operator_bench(CLI::App& bench);  // app/bench_cli_fem.cpp
 
 }  // namespace wr::app

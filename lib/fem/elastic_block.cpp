@@ -31,6 +31,9 @@ const GradedMesh& ElasticBlock::mesh() const { return *impl_->mesh; }
 
 std::size_t ElasticBlock::nodes() const { return std::size_t(impl_->mesh->nodes()); }
 
+Mat ElasticBlock::assembled_stiffness() const { return impl_->stiffness->mat(); }
+MPI_Comm ElasticBlock::comm() const { return impl_->comm; }
+
 BlockState ElasticBlock::state() const {
   const Impl& m = *impl_;
   BlockState s;

@@ -17,6 +17,7 @@
 // (l2 over the face nodes: the lumped boundary mass on this uniform face grid) is below a
 // tolerance. Units: SI, forces in N for the given E (Pa).
 #include <mpi.h>
+#include <petscmat.h>
 
 #include <string>
 #include <vector>
@@ -155,6 +156,10 @@ class ElasticBlock {
   // The state solve() continues from, and a return to one taken from this block earlier (not
   // collective; every rank restores its own part).
   BlockState state() const;
+  // The assembled stiffness in its current frames (the identity until a solve rotates them),
+  // for checks of other operators on the same block (matrix_free_stiffness.hpp).
+  Mat assembled_stiffness() const;
+  MPI_Comm comm() const;
   void restore(const BlockState& s);
   // The deformed block as a VTK unstructured grid (.vtu, ParaView; hexahedra, point data
   // "displacement" in m, hanging nodes interpolated). Collective; rank 0 writes `path`.

@@ -20,6 +20,7 @@
 #include "lib/contact/adaptive_damping.hpp"
 #include "lib/core/memory_guard.hpp"
 #include "lib/fem/framed_stiffness.hpp"
+#include "lib/fem/local_bricks.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/fem/penetration_retries.hpp"
 #include "lib/fem/slow_mode_extrapolation.hpp"
@@ -146,40 +147,7 @@ struct ElasticBlock::Impl {
   // independent nodes behind the 8 corners, weights = 8 x ids.size() (row-major) interpolation.
   template <class F>
   void for_each_local_brick(F&& f) const {
-    const GradedMesh& g = *mesh;
-    std::vector<GradedMesh::Parent> ps;
-    std::vector<std::int32_t> ids;
-    std::vector<double> w;
-    for (int e = 0; e < g.layers(); ++e) {
-      const int l = g.layer_level(e);
-      // Hanging parents lie at most one cell beyond a brick: two cells of margin suffice.
-      const int i0 = std::max(0, g.owned_i_begin(rank, l) - 2);
-      const int i1 = std::min(g.cells_x(l), g.owned_i_end(rank, l) + 2);
-      for (int j = 0; j < g.cells_y(l); ++j)
-        for (int i = i0; i < i1; ++i) {
-          ids.clear();
-          bool mine = false;
-          int start[9];
-          ps.clear();
-          for (int c = 0; c < 8; ++c) {
-            int p, pi, pj;
-            g.corner(e, i, j, c, p, pi, pj);
-            start[c] = int(ps.size());
-            g.parents(p, pi, pj, ps);
-          }
-          start[8] = int(ps.size());
-          for (const auto& q : ps) {
-            if (std::find(ids.begin(), ids.end(), q.id) == ids.end()) ids.push_back(q.id);
-            mine |= owns(q.id);
-          }
-          if (!mine) continue;
-          w.assign(8 * ids.size(), 0.0);
-          for (int c = 0; c < 8; ++c)
-            for (int k = start[c]; k < start[c + 1]; ++k)
-              w[c * ids.size() + (std::find(ids.begin(), ids.end(), ps[k].id) - ids.begin())] += ps[k].weight;
-          f(e, ids, w);
-        }
-    }
+    wr::for_each_local_brick(*mesh, rank, std::int32_t(own_begin), std::int32_t(own_end), std::forward<F>(f));
   }
 
   void make_grid();

@@ -1,0 +1,174 @@
+#include "lib/fem/matrix_free_stiffness.hpp"
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "lib/fem/elastic_block_impl.hpp"
+#include "lib/fem/local_bricks.hpp"
+
+namespace wr {
+
+using petsc::check;
+
+MatrixFreeStiffness::MatrixFreeStiffness(const GradedMesh& g, MPI_Comm comm, double young, double poisson) : comm_(comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  if (g.ranks() != ranks) throw std::invalid_argument("matrix-free stiffness: the mesh is partitioned for another rank count");
+  own_begin_ = g.owned_begin(rank);
+  own_end_ = g.owned_end(rank);
+  const std::int32_t n_own = own_end_ - own_begin_;
+  for (int e = 0; e < g.layers(); ++e)
+    layer_k_.push_back(block_detail::brick_stiffness(g.hx(g.layer_level(e)), g.hy(g.layer_level(e)),
+                                                     g.planes()[e + 1].z - g.planes()[e].z, young, poisson));
+  std::unordered_map<std::int32_t, std::int32_t> ghost_slot;
+  auto local = [&](std::int32_t id) {
+    if (id >= own_begin_ && id < own_end_) return id - own_begin_;
+    const auto [it, added] = ghost_slot.try_emplace(id, n_own + std::int32_t(ghost_ids_.size()));
+    if (added) ghost_ids_.push_back(id);
+    return it->second;
+  };
+  for_each_local_brick(g, rank, own_begin_, own_end_, [&](int e, const std::vector<std::int32_t>& ids, const std::vector<double>& w) {
+    layer_.push_back(std::int16_t(e));
+    const std::size_t n = ids.size();
+    for (int c = 0; c < 8; ++c) {
+      corner_.push_back(std::uint32_t(node_.size()));
+      for (std::size_t p = 0; p < n; ++p)
+        if (w[c * n + p] != 0) {
+          node_.push_back(local(ids[p]));
+          weight_.push_back(w[c * n + p]);
+        }
+    }
+  });
+  corner_.push_back(std::uint32_t(node_.size()));  // the last brick's end (brick b's corners: 8 b ... 8 b + 8)
+  // The scatter of x's owned and ghost dofs into local_.
+  std::vector<PetscInt> from;
+  from.reserve(3 * (std::size_t(n_own) + ghost_ids_.size()));
+  for (std::int32_t id = own_begin_; id < own_end_; ++id)
+    for (int c = 0; c < 3; ++c) from.push_back(3 * PetscInt(id) + c);
+  for (std::int32_t id : ghost_ids_)
+    for (int c = 0; c < 3; ++c) from.push_back(3 * PetscInt(id) + c);
+  Vec global = nullptr;
+  check(VecCreateMPI(comm, 3 * n_own, PETSC_DETERMINE, &global), "VecCreateMPI");
+  check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(from.size()), &local_), "VecCreateSeq");
+  IS is = nullptr;
+  check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(from.size()), from.data(), PETSC_COPY_VALUES, &is), "ISCreateGeneral");
+  check(VecScatterCreate(global, is, local_, nullptr, &scatter_), "VecScatterCreate");
+  ISDestroy(&is);
+  VecDestroy(&global);
+  check(MatCreateShell(comm, 3 * n_own, 3 * n_own, PETSC_DETERMINE, PETSC_DETERMINE, const_cast<MatrixFreeStiffness*>(this),
+                       &shell_),
+        "MatCreateShell");
+  check(MatShellSetOperation(shell_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shell_mult)), "MatShellSetOperation");
+  check(MatShellSetOperation(shell_, MATOP_GET_DIAGONAL, reinterpret_cast<void (*)(void)>(&shell_diagonal)),
+        "MatShellSetOperation");
+  check(MatSetOption(shell_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+}
+
+MatrixFreeStiffness::~MatrixFreeStiffness() {
+  MatDestroy(&shell_);
+  VecScatterDestroy(&scatter_);
+  VecDestroy(&local_);
+}
+
+std::size_t MatrixFreeStiffness::memory_bytes() const {
+  PetscInt n = 0;
+  VecGetSize(local_, &n);
+  return layer_k_.size() * sizeof(layer_k_[0]) + layer_.size() * sizeof(std::int16_t) + corner_.size() * sizeof(std::uint32_t) +
+         node_.size() * sizeof(std::int32_t) + weight_.size() * sizeof(double) + std::size_t(n) * sizeof(double);
+}
+
+void MatrixFreeStiffness::multiply(Vec x, Vec y) const {
+  check(VecScatterBegin(scatter_, x, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(scatter_, x, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  const PetscScalar* xl = nullptr;
+  PetscScalar* yo = nullptr;
+  check(VecGetArrayRead(local_, &xl), "VecGetArrayRead");
+  check(VecGetArray(y, &yo), "VecGetArray");
+  const std::int32_t n_own = own_end_ - own_begin_;
+  std::fill(yo, yo + 3 * std::size_t(n_own), 0.0);
+  for (std::size_t b = 0; b < layer_.size(); ++b) {
+    const std::uint32_t* cs = &corner_[8 * b];
+    // The corners' displacements through the hanging-node interpolation, then the brick's forces.
+    double xe[24];
+    for (int c = 0; c < 8; ++c) {
+      double v0 = 0, v1 = 0, v2 = 0;
+      for (std::uint32_t k = cs[c]; k < cs[c + 1]; ++k) {
+        const double* xp = xl + 3 * std::size_t(node_[k]);
+        const double w = weight_[k];
+        v0 += w * xp[0];
+        v1 += w * xp[1];
+        v2 += w * xp[2];
+      }
+      xe[3 * c] = v0, xe[3 * c + 1] = v1, xe[3 * c + 2] = v2;
+    }
+    const double* k = layer_k_[std::size_t(layer_[b])].data();
+    double ye[24];
+    for (int r = 0; r < 24; ++r) {
+      double s = 0;
+      for (int q = 0; q < 24; ++q) s += k[r * 24 + q] * xe[q];
+      ye[r] = s;
+    }
+    for (int c = 0; c < 8; ++c)
+      for (std::uint32_t k2 = cs[c]; k2 < cs[c + 1]; ++k2) {
+        const std::int32_t p = node_[k2];
+        if (p >= n_own) continue;  // another rank's row
+        const double w = weight_[k2];
+        double* yp = yo + 3 * std::size_t(p);
+        yp[0] += w * ye[3 * c], yp[1] += w * ye[3 * c + 1], yp[2] += w * ye[3 * c + 2];
+      }
+  }
+  check(VecRestoreArray(y, &yo), "VecRestoreArray");
+  check(VecRestoreArrayRead(local_, &xl), "VecRestoreArrayRead");
+}
+
+void MatrixFreeStiffness::diagonal(Vec d) const {
+  PetscScalar* dd = nullptr;
+  check(VecGetArray(d, &dd), "VecGetArray");
+  const std::int32_t n_own = own_end_ - own_begin_;
+  std::fill(dd, dd + 3 * std::size_t(n_own), 0.0);
+  for (std::size_t b = 0; b < layer_.size(); ++b) {
+    const std::uint32_t* cs = &corner_[8 * b];
+    const double* k = layer_k_[std::size_t(layer_[b])].data();
+    // K_pp,ii = sum over corner pairs (a, b) of w_a,p w_b,p K8[3a + i][3b + i].
+    for (int a = 0; a < 8; ++a)
+      for (std::uint32_t ka = cs[a]; ka < cs[a + 1]; ++ka) {
+        const std::int32_t p = node_[ka];
+        if (p >= n_own) continue;
+        for (int c = 0; c < 8; ++c)
+          for (std::uint32_t kc = cs[c]; kc < cs[c + 1]; ++kc) {
+            if (node_[kc] != p) continue;
+            const double w = weight_[ka] * weight_[kc];
+            for (int i = 0; i < 3; ++i) dd[3 * std::size_t(p) + i] += w * k[(3 * a + i) * 24 + 3 * c + i];
+          }
+      }
+  }
+  check(VecRestoreArray(d, &dd), "VecRestoreArray");
+}
+
+PetscErrorCode MatrixFreeStiffness::shell_mult(Mat A, Vec x, Vec y) {
+  void* ctx = nullptr;
+  PetscCall(MatShellGetContext(A, &ctx));
+  try {
+    static_cast<const MatrixFreeStiffness*>(ctx)->multiply(x, y);
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
+
+PetscErrorCode MatrixFreeStiffness::shell_diagonal(Mat A, Vec d) {
+  void* ctx = nullptr;
+  PetscCall(MatShellGetContext(A, &ctx));
+  try {
+    static_cast<const MatrixFreeStiffness*>(ctx)->diagonal(d);
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
+
+}  // namespace wr
