@@ -47,7 +47,8 @@ class MatrixFreeStiffness {
 
   MPI_Comm comm_;
   std::int32_t own_begin_ = 0, own_end_ = 0;
-  std::vector<std::array<double, 24 * 24>> layer_k_;  // per mesh layer
+  std::vector<std::array<double, 24 * 24>> layer_k_;  // per mesh layer, row-major
+  std::vector<double> columns_;                       // the same, column by column (the product's)
   // Per brick: its layer, and its 8 corners' interpolation as runs of (local node, weight) in
   // corner_[8 brick + c] ... corner_[8 brick + c + 1] of node_/weight_ (one end entry last). Local nodes: the
   // owned ones first (id - own_begin), then the ghosts in the order of ghost_ids_.
