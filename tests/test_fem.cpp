@@ -13,6 +13,7 @@
 #include "lib/core/errors.hpp"
 #include "lib/fem/block_press_shear.hpp"
 #include "lib/fem/elastic_block.hpp"
+#include "lib/fem/framed_stiffness.hpp"
 #include "lib/fem/matrix_free_stiffness.hpp"
 #include "lib/fem/amg_hierarchy.hpp"
 #include "lib/contact/adaptive_damping.hpp"
@@ -167,6 +168,65 @@ TEST(MatrixFreeStiffness, ProductAndDiagonalEqualTheAssembledMatrix) {
     VecDestroy(&y_aij);
     VecDestroy(&y_mf);
   }
+}
+
+// The framed, reduced operator of the contact iteration (FramedStiffness: R^T (K + C) R with
+// rows and columns eliminated) against its matrix-free counterpart, with turned frames, face
+// blocks and eliminated face dofs, on 1 and 2 ranks.
+TEST(MatrixFreeStiffness, FramedProductEqualsTheFramedStiffness) {
+  BlockSpec b;
+  b.mesh.lx = b.mesh.ly = b.mesh.lz = 0.02;
+  b.mesh.nx = b.mesh.ny = 16;
+  b.mesh.min_cells = 2;
+  b.young = 3.0e6;
+  b.poisson = 0.45;
+  ElasticBlock block(b);
+  const GradedMesh& g = block.mesh();
+  int rank = 0;
+  MPI_Comm_rank(block.comm(), &rank);
+  const PetscInt own_begin = g.owned_begin(rank), own_end = g.owned_end(rank);
+  std::vector<std::int32_t> slot(std::size_t(g.nodes()), -1);
+  for (int j = 0; j <= b.mesh.ny; ++j)
+    for (int i = 0; i <= b.mesh.nx; ++i) slot[std::size_t(g.node(0, i, j))] = j * (b.mesh.nx + 1) + i;
+  const std::size_t slots = std::size_t((b.mesh.nx + 1) * (b.mesh.ny + 1));
+  // Frames Q = Rz(a) Rx(t) per slot, and symmetric blocks C, both varying over the face.
+  std::vector<double> frames(9 * slots), blocks(9 * slots);
+  for (std::size_t s = 0; s < slots; ++s) {
+    const double a = 0.7 * double(s), t = 0.2 + 0.1 * std::sin(double(s));
+    const double ca = std::cos(a), sa = std::sin(a), ct = std::cos(t), st = std::sin(t);
+    const double q[9] = {ca, -sa * ct, sa * st, sa, ca * ct, -ca * st, 0, st, ct};
+    std::copy(q, q + 9, &frames[9 * s]);
+    const double c[9] = {1e9, 2e8 * std::sin(double(s)), 0, 2e8 * std::sin(double(s)), 5e8, 1e8, 0, 1e8, 3e9};
+    std::copy(c, c + 9, &blocks[9 * s]);
+  }
+  Mat copy = nullptr;
+  MatDuplicate(block.assembled_stiffness(), MAT_COPY_VALUES, &copy);
+  FramedStiffness framed(copy, own_begin, own_end, slot);
+  framed.set_frames(frames);
+  framed.set_face_blocks(blocks);
+  std::vector<PetscInt> rows;  // the normal dof of every third owned face node
+  for (PetscInt n = own_begin; n < own_end; ++n)
+    if (slot[std::size_t(n)] >= 0 && slot[std::size_t(n)] % 3 == 0) rows.push_back(3 * n + 2);
+  Vec x = nullptr, rhs = nullptr, y_aij = nullptr, y_mf = nullptr;
+  MatCreateVecs(framed.mat(), &x, &rhs);
+  VecDuplicate(rhs, &y_aij);
+  VecDuplicate(rhs, &y_mf);
+  PetscRandom rnd = nullptr;
+  PetscRandomCreate(block.comm(), &rnd);
+  PetscRandomSetSeed(rnd, 3);
+  PetscRandomSeed(rnd);
+  VecSetRandom(x, rnd);
+  framed.eliminate(rows, 5.0, x, rhs);
+  MatMult(framed.mat(), x, y_aij);
+  const MatrixFreeStiffness mf(g, block.comm(), b.young, b.poisson);
+  mf.multiply_framed(x, y_mf, slot, frames, blocks, rows, 5.0);
+  PetscReal scale = 0, diff = 0;
+  VecNorm(y_aij, NORM_INFINITY, &scale);
+  VecAXPY(y_mf, -1.0, y_aij);
+  VecNorm(y_mf, NORM_INFINITY, &diff);
+  EXPECT_LT(diff, 1e-12 * scale);
+  PetscRandomDestroy(&rnd);
+  for (Vec* v : {&x, &rhs, &y_aij, &y_mf}) VecDestroy(v);
 }
 
 TEST(AmgHierarchy, AutomaticIsStandardWhereItFitsAndLeanBeyond) {

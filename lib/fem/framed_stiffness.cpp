@@ -264,14 +264,13 @@ void FramedStiffness::multiply_unrotated(Vec v, Vec out) {
   rotate_vector(out, frames_, false);
 }
 
-void FramedStiffness::rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const {
-  PetscScalar* a;
-  check(VecGetArray(v, &a), "VecGetArray");
-  for (PetscInt n = own_begin_; n < own_end_; ++n) {
-    const std::int32_t s = face_slot_[std::size_t(n)];
+void rotate_face_dofs(PetscScalar* a, PetscInt own_begin, PetscInt own_end, const std::vector<std::int32_t>& face_slot,
+                      const std::vector<double>& frames, bool transpose) {
+  for (PetscInt n = own_begin; n < own_end; ++n) {
+    const std::int32_t s = face_slot[std::size_t(n)];
     if (s < 0) continue;
     const double* q = &frames[9 * std::size_t(s)];
-    double* x = a + 3 * std::size_t(n - own_begin_);
+    double* x = a + 3 * std::size_t(n - own_begin);
     double y[3];
     for (int i = 0; i < 3; ++i)
       y[i] = transpose ? q[i] * x[0] + q[3 + i] * x[1] + q[6 + i] * x[2]
@@ -280,6 +279,12 @@ void FramedStiffness::rotate_vector(Vec v, const std::vector<double>& frames, bo
     x[1] = y[1];
     x[2] = y[2];
   }
+}
+
+void FramedStiffness::rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const {
+  PetscScalar* a;
+  check(VecGetArray(v, &a), "VecGetArray");
+  rotate_face_dofs(a, own_begin_, own_end_, face_slot_, frames, transpose);
   check(VecRestoreArray(v, &a), "VecRestoreArray");
 }
 

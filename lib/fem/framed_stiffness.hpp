@@ -32,6 +32,11 @@
 
 namespace wr {
 
+// a <- R a (transpose: R^T a) for the owned dofs `a` (3 per node from own_begin, as the matrix's
+// rows): Q = frames[9 slot ...] (row-major) on every owned face node, the identity elsewhere.
+void rotate_face_dofs(PetscScalar* a, PetscInt own_begin, PetscInt own_end, const std::vector<std::int32_t>& face_slot,
+                      const std::vector<double>& frames, bool transpose);
+
 class FramedStiffness {
  public:
   // Takes ownership of K (destroyed also when it is refused), whose frames are the identity.

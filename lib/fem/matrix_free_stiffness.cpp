@@ -62,6 +62,7 @@ MatrixFreeStiffness::MatrixFreeStiffness(const GradedMesh& g, MPI_Comm comm, dou
   check(VecScatterCreate(global, is, local_, nullptr, &scatter_), "VecScatterCreate");
   ISDestroy(&is);
   VecDestroy(&global);
+  check(VecCreateMPI(comm, 3 * n_own, PETSC_DETERMINE, &work_), "VecCreateMPI");
   check(MatCreateShell(comm, 3 * n_own, 3 * n_own, PETSC_DETERMINE, PETSC_DETERMINE, const_cast<MatrixFreeStiffness*>(this),
                        &shell_),
         "MatCreateShell");
@@ -75,6 +76,7 @@ MatrixFreeStiffness::~MatrixFreeStiffness() {
   MatDestroy(&shell_);
   VecScatterDestroy(&scatter_);
   VecDestroy(&local_);
+  VecDestroy(&work_);
 }
 
 std::size_t MatrixFreeStiffness::memory_bytes() const {
@@ -158,6 +160,37 @@ void MatrixFreeStiffness::multiply(Vec x, Vec y) const {
   apply_bricks(layer_.size(), layer_.data(), corner_.data(), node_.data(), weight_.data(), columns_.data(), xl, yo, n_own);
   check(VecRestoreArray(y, &yo), "VecRestoreArray");
   check(VecRestoreArrayRead(local_, &xl), "VecRestoreArrayRead");
+}
+
+void MatrixFreeStiffness::multiply_framed(Vec x, Vec y, const std::vector<std::int32_t>& face_slot, const std::vector<double>& frames,
+                                          const std::vector<double>& blocks, const std::vector<PetscInt>& eliminated,
+                                          double unit_diag) const {
+  const PetscInt first = 3 * PetscInt(own_begin_);
+  check(VecCopy(x, work_), "VecCopy");
+  PetscScalar* w = nullptr;
+  check(VecGetArray(work_, &w), "VecGetArray");
+  for (PetscInt r : eliminated) w[r - first] = 0;  // P x
+  rotate_face_dofs(w, own_begin_, own_end_, face_slot, frames, false);  // R P x
+  check(VecRestoreArray(work_, &w), "VecRestoreArray");
+  multiply(work_, y);
+  PetscScalar* yo = nullptr;
+  const PetscScalar *wv = nullptr, *xv = nullptr;
+  check(VecGetArray(y, &yo), "VecGetArray");
+  check(VecGetArrayRead(work_, &wv), "VecGetArrayRead");
+  if (!blocks.empty())  // + C R P x on the face nodes
+    for (std::int32_t n = own_begin_; n < own_end_; ++n) {
+      const std::int32_t s = face_slot[std::size_t(n)];
+      if (s < 0) continue;
+      const double* c = &blocks[9 * std::size_t(s)];
+      const std::size_t o = 3 * std::size_t(n - own_begin_);
+      for (int i = 0; i < 3; ++i) yo[o + i] += c[3 * i] * wv[o] + c[3 * i + 1] * wv[o + 1] + c[3 * i + 2] * wv[o + 2];
+    }
+  check(VecRestoreArrayRead(work_, &wv), "VecRestoreArrayRead");
+  rotate_face_dofs(yo, own_begin_, own_end_, face_slot, frames, true);  // R^T (K + C) R P x
+  check(VecGetArrayRead(x, &xv), "VecGetArrayRead");
+  for (PetscInt r : eliminated) yo[r - first] = unit_diag * xv[r - first];
+  check(VecRestoreArrayRead(x, &xv), "VecRestoreArrayRead");
+  check(VecRestoreArray(y, &yo), "VecRestoreArray");
 }
 
 void MatrixFreeStiffness::diagonal(Vec d) const {

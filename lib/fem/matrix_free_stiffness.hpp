@@ -34,6 +34,13 @@ class MatrixFreeStiffness {
 
   // y = K x (x not changed; y distinct from x).
   void multiply(Vec x, Vec y) const;
+  // The contact iteration's operator (framed_stiffness.hpp) without its matrix:
+  //   y = P R^T (K + C) R P x + unit_diag (I - P) x,
+  // R the face nodes' frames (9 per face slot, row-major Q with Q e_z = the constraint normal),
+  // C their symmetric 3 x 3 blocks in the global frame (9 per slot; empty: none), P zeroing the
+  // owned global dofs `eliminated`. face_slot[node]: the node's face slot or -1.
+  void multiply_framed(Vec x, Vec y, const std::vector<std::int32_t>& face_slot, const std::vector<double>& frames,
+                       const std::vector<double>& blocks, const std::vector<PetscInt>& eliminated, double unit_diag) const;
   // d = diag(K): Jacobi's and Chebyshev's smoothers' only need of the matrix.
   void diagonal(Vec d) const;
   // A MATSHELL of this operator (MatMult, MatGetDiagonal), for KSP; owned by this object.
@@ -58,6 +65,7 @@ class MatrixFreeStiffness {
   std::vector<double> weight_;
   std::vector<std::int32_t> ghost_ids_;
   Vec local_ = nullptr;            // owned and ghost dofs of x, sequential
+  Vec work_ = nullptr;             // R P x, laid out as x
   VecScatter scatter_ = nullptr;   // x -> local_
   Mat shell_ = nullptr;
 };
