@@ -128,9 +128,13 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
   const bool synthetic = comp.value("synthetic", false), wet = j.contains("wet");
   const bool flash = j.value("flash_temperature", false);
   std::ostringstream o;
-  o << "<h2>Hysteresis friction against sliding speed: " << escape(file) << "</h2>\n"
-    << "<p>Persson's theory (the rubber's viscoelastic loss excited by the road's asperities; the thesis's eq. 3.170), "
-    << (flash ? "with" : "without") << " the flash temperature; compound <b>" << escape(comp.value("name", std::string("?")))
+  const bool exact = j.value("rung", std::string("persson")) == "viscoelastic" && j.contains("exact");
+  o << "<h2>Hysteresis friction against sliding speed: " << escape(file) << "</h2>\n<p>"
+    << (exact ? "Exact steady sliding of the rubber over the map (its viscoelastic loss excited by the road's asperities), "
+                "Persson's theory on the same band beside it; isothermal"
+              : std::string("Persson's theory (the rubber's viscoelastic loss excited by the road's asperities; the thesis's "
+                            "eq. 3.170), ") + (flash ? "with" : "without") + " the flash temperature")
+    << "; compound <b>" << escape(comp.value("name", std::string("?")))
     << "</b>" << (synthetic ? " <span class=\"flag\">(SYNTHETIC: trends, not a prediction for a real tyre)</span>" : "")
     << "; &sigma;<sub>0</sub> " << fmt(num(j["pressure"])) << " Pa, T<sub>0</sub> " << fmt(num(j["temperature"]), "%.1f")
     << " &deg;C; spectrum from q<sub>0</sub> " << fmt(num(j["q0"])) << " to q<sub>1</sub> " << fmt(num(j["q1"]))
@@ -139,7 +143,6 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
     << ".</p>\n";
   PlotSpec spec{"mu(v), " + std::string(flash ? "flash temperature" : "isothermal"), "sliding speed v [m/s]", "mu", true,
                 false, {}};
-  const bool exact = j.value("rung", std::string("persson")) == "viscoelastic" && j.contains("exact");
   spec.series.push_back(curve_series(j, exact ? "dry, exact steady sliding on the map" : "dry"));
   if (exact) spec.series.push_back(curve_series(j["exact"]["persson_same_band"], "dry, Persson on the same band"));
   if (wet && exact) {
@@ -153,7 +156,6 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
   const std::string chart = chart_dir + "/mu_v.svg";
   write_svg_plot(chart, spec);
   o << html::figure(chart, "Hysteresis friction against sliding speed, dry and on the wet surface.");
-  if (exact) o << exact_rung_html(j, chart_dir);
   o << "<ul><li>dry: peak &mu; " << fmt(num(j["peak"]["mu"])) << " at " << fmt(num(j["peak"]["v"]), "%.3g")
     << " m/s; at 64 km/h &mu; " << fmt(num(j["locked_wheel"]["mu"]))
     << " (a dry road has no skid number), flash temperature rise " << fmt(num(j["locked_wheel"]["temperature_rise"]), "%.1f") << " K</li>";
@@ -175,6 +177,7 @@ std::string friction_section_html(const std::string& file, const nlohmann::json&
     o << "</tr>";
   }
   o << "</table>\n";
+  if (exact) o << exact_rung_html(j, chart_dir);
   if (j.contains("q1_scan") && !j["q1_scan"].empty()) {
     // mu against the cut-off, with the run's own q1 (a number, the default, or a criterion's) marked
     PlotSpec q{"dry mu at 64 km/h against the cut-off q1", "q1 [1/m]", "mu", true, false, {}};
