@@ -7,6 +7,7 @@
 // result per chunk and combine them in chunk order, so results are bit-identical for any thread
 // count. The first exception thrown by fn is rethrown on the calling thread.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <exception>
@@ -47,6 +48,23 @@ void parallel_chunks(std::size_t n, std::size_t chunks, int threads, F&& fn) {
   work();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+}
+
+// K sums over [0, n): f(k, acc) adds index k's terms into acc (std::array<double, K>). Each of
+// the `chunks` pieces sums on its own and the pieces are added in chunk order, so the result is
+// the same bits for any thread count.
+template <std::size_t K, class F>
+std::array<double, K> parallel_sums(std::size_t n, std::size_t chunks, int threads, F&& f) {
+  std::vector<std::array<double, K>> part(std::max<std::size_t>(chunks, 1), std::array<double, K>{});
+  parallel_chunks(n, chunks, threads, [&](std::size_t c, std::size_t b, std::size_t e) {
+    std::array<double, K> a{};
+    for (std::size_t k = b; k < e; ++k) f(k, a);
+    part[c] = a;
+  });
+  std::array<double, K> sum{};
+  for (const auto& a : part)
+    for (std::size_t i = 0; i < K; ++i) sum[i] += a[i];
+  return sum;
 }
 
 }  // namespace wr

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include "lib/core/fft.hpp"
 #include "lib/core/parallel.hpp"
@@ -96,16 +97,7 @@ struct SpectralNormalContact::Impl {
   }
   template <std::size_t K, class F>
   std::array<double, K> reduce(F&& f) const {
-    std::vector<std::array<double, K>> part(chunks(), std::array<double, K>{});
-    parallel_chunks(np, chunks(), threads, [&](std::size_t c, std::size_t b, std::size_t e) {
-      std::array<double, K> a{};
-      for (std::size_t k = b; k < e; ++k) f(k, a);
-      part[c] = a;
-    });
-    std::array<double, K> sum{};
-    for (const auto& a : part)
-      for (std::size_t i = 0; i < K; ++i) sum[i] += a[i];
-    return sum;
+    return parallel_sums<K>(np, chunks(), threads, std::forward<F>(f));
   }
   // One chunk per 64k points, at most 64: small grids stay on one thread.
   std::size_t chunks() const { return std::clamp<std::size_t>(np >> 16, 1, 64); }

@@ -9,6 +9,7 @@
 #include <deque>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "lib/core/errors.hpp"
 #include "lib/core/parallel.hpp"
@@ -47,16 +48,7 @@ struct ViscoelasticSliding::Impl {
   // Sums in chunk order: the same for any thread count.
   template <std::size_t K, class F>
   std::array<double, K> reduce(F&& f) const {
-    std::vector<std::array<double, K>> part(chunks(), std::array<double, K>{});
-    parallel_chunks(n, chunks(), opt.threads, [&](std::size_t c, std::size_t b, std::size_t e) {
-      std::array<double, K> a{};
-      for (std::size_t k = b; k < e; ++k) f(k, a);
-      part[c] = a;
-    });
-    std::array<double, K> sum{};
-    for (const auto& a : part)
-      for (std::size_t i = 0; i < K; ++i) sum[i] += a[i];
-    return sum;
+    return parallel_sums<K>(n, chunks(), opt.threads, std::forward<F>(f));
   }
 
   double wave_x(std::size_t i) const { return qx0 * double(i); }
