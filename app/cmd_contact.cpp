@@ -393,6 +393,7 @@ int run_contact(ContactCli c) {
                 "%s\n",
                 r.nodes, r.mesh_points, r.elements, r.layers, r.coarsenings, r.dofs, ranks,
                 r.solver == LinearSolver::direct ? "sparse Cholesky (direct)"
+                : r.solver == LinearSolver::gmg  ? "matrix-free, geometric multigrid"
                                                  : (std::string(amg_hierarchy_name(r.amg)) + " AMG hierarchy").c_str());
     print_peak(peak, r.steps);
     std::printf("  timing [s]: setup %.2f  linearise %.2f  rotate %.2f  solve %.2f  total %.2f\n", r.wall_setup,

@@ -120,9 +120,10 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
       ->capture_default_str();
   s.add_option("--solver", c.solver,
                "fem: linear solver of the active-set systems: direct (sparse Cholesky: SuiteSparse CHOLMOD on one "
-               "rank, MUMPS on several), amg (CG with the AMG preconditioner of --amg), or auto (direct up to "
-               "20000 nodes on one rank when only pressing, where it is measured faster; AMG for shear tests: "
-               "docs/performance.md)")
+               "rank, MUMPS on several), amg (CG with the AMG preconditioner of --amg), gmg (no matrix: CG with a "
+               "geometric multigrid on the block's own coarser meshes, a fraction of AMG's memory; -gmg_* options "
+               "through --petsc; not with --iteration newton), or auto (direct up to 20000 nodes on one rank when "
+               "only pressing, where it is measured faster; AMG otherwise: docs/performance.md)")
       ->capture_default_str();
   s.add_option("--thickness", c.thickness,
                "spectral: layer thickness in m, or inf for a half-space (default: the block height)");

@@ -130,6 +130,7 @@ TEST_F(Robust, ContactAndSweepsShareOneValidatorRunBeforeAnyWork) {
       {"--facet-band 2", "--facet-band"}, {"--ksp-rtol nan", "--ksp-rtol"},
       {"--max-penetration nan", "--max-penetration"}, {"--E inf", "--E"},
       {"--curvature 2", "--curvature"}, {"--iteration newton --facet-normals", "--iteration"},
+      {"--iteration newton --solver gmg", "--solver"}, {"--solver multigrid", "--solver"},
       {"--to-peak", "--to-peak"}};
   for (const auto& [opt, name] : bad) {
     expect_refused(fem + opt, name);

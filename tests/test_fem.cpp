@@ -248,6 +248,8 @@ TEST(LinearSolver, AutomaticIsDirectOnSmallOneRankBlocksOnly) {
   EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 10 * kDirectSolverMaxNodes, 1), LinearSolver::amg);
   EXPECT_EQ(resolve_linear_solver(LinearSolver::direct, 1e7, 2), LinearSolver::direct);
   EXPECT_EQ(parse_linear_solver("direct", "--solver"), LinearSolver::direct);
+  EXPECT_EQ(parse_linear_solver("gmg", "--solver"), LinearSolver::gmg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::gmg, 1e4, 1), LinearSolver::gmg);
   EXPECT_THROW(parse_linear_solver("cholmod", "--solver"), InputError);
 }
 

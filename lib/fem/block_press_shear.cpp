@@ -180,7 +180,10 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   res.solver = block.linear_solver();
   // Before a run of hours, say what it holds: the mesh and the hierarchy that decides its memory.
   if ((opt.progress_every_s > 0 || opt.trace) && rank_of(opt.comm) == 0) {
-    if (res.solver == LinearSolver::direct)
+    if (res.solver == LinearSolver::gmg)
+      std::fprintf(stderr, "  block: %zu nodes, %zu dofs, matrix-free, geometric multigrid: %s; set up in %.1f s\n",
+                   res.nodes, res.dofs, block.multigrid_description().c_str(), res.wall_setup);
+    else if (res.solver == LinearSolver::direct)
       std::fprintf(stderr, "  block: %zu nodes, %zu dofs, sparse Cholesky (direct solver), set up in %.1f s\n", res.nodes,
                    res.dofs, res.wall_setup);
     else
@@ -255,6 +258,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
                      cs.converged ? "converged" : "NOT converged", cs.outer_iterations, st.coarse_wall_s);
     }
     ContactSolution s = block.solve(load);
+    if (opt.trace && rank_of(opt.comm) == 0 && res.solver == LinearSolver::gmg)
+      std::fprintf(stderr, "  multigrid so far: %s\n", block.multigrid_timing().c_str());
     st.uz = load.uz;
     st.ux = load.ux;
     st.fz = s.fz;

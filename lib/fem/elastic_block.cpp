@@ -18,11 +18,19 @@ ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
 
 AmgHierarchy ElasticBlock::amg_hierarchy() const { return impl_->amg; }
 LinearSolver ElasticBlock::linear_solver() const { return impl_->solver; }
+std::string ElasticBlock::multigrid_description() const { return impl_->gmg ? impl_->gmg->describe() : std::string(); }
+std::string ElasticBlock::multigrid_timing() const {
+  if (!impl_->gmg) return {};
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "; updates %.2f s", impl_->gmg->wall_update());
+  return impl_->gmg->timing() + buf;
+}
 
 ElasticBlock::~ElasticBlock() {
   if (impl_->face_scatter) VecScatterDestroy(&impl_->face_scatter);
   if (impl_->face_u) VecDestroy(&impl_->face_u);
   if (impl_->u) VecDestroy(&impl_->u);
+  impl_->gmg.reset();
   impl_->stiffness.reset();
   delete impl_;
 }
@@ -31,7 +39,11 @@ const GradedMesh& ElasticBlock::mesh() const { return *impl_->mesh; }
 
 std::size_t ElasticBlock::nodes() const { return std::size_t(impl_->mesh->nodes()); }
 
-Mat ElasticBlock::assembled_stiffness() const { return impl_->stiffness->mat(); }
+Mat ElasticBlock::assembled_stiffness() const {
+  const auto* k = dynamic_cast<const FramedStiffness*>(impl_->stiffness.get());
+  if (!k) throw std::logic_error("ElasticBlock::assembled_stiffness: the block was built without a matrix (--solver gmg)");
+  return k->mat();
+}
 MPI_Comm ElasticBlock::comm() const { return impl_->comm; }
 
 BlockState ElasticBlock::state() const {

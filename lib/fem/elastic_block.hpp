@@ -176,7 +176,11 @@ class ElasticBlock {
   void add_lifted_face_field(const std::vector<double>& field, int fnx, int fny);
   std::size_t nodes() const;  // independent nodes
   AmgHierarchy amg_hierarchy() const;  // the one in use: standard or lean, never automatic
-  LinearSolver linear_solver() const;  // the one in use: direct or amg, never automatic
+  LinearSolver linear_solver() const;  // the one in use: direct, amg or gmg, never automatic
+  // The geometric multigrid's levels and smoother (--solver gmg), else empty.
+  std::string multigrid_description() const;
+  // Its time per level so far and in its updates (--trace), else empty.
+  std::string multigrid_timing() const;
   const GradedMesh& mesh() const;
   std::size_t dofs() const { return 3 * nodes(); }
 

@@ -31,6 +31,7 @@ ElasticBlock::Impl::ActiveSetOutcome ElasticBlock::Impl::solve_active_set(const 
     check(VecAssemblyBegin(s.uh), "VecAssemblyBegin");
     check(VecAssemblyEnd(s.uh), "VecAssemblyEnd");
     stiffness->eliminate(rows, control.unit_diag, s.uh, s.b, s.shift);
+    if (gmg) gmg->update();
     check(KSPSetOperators(s.ksp, stiffness->mat(), stiffness->mat()), "KSPSetOperators");
     PetscBool reused = PETSC_FALSE;
     KSPGetReusePreconditioner(s.ksp, &reused);

@@ -109,10 +109,16 @@ void ElasticBlock::Impl::make_grid() {
   own_end = mesh->owned_end(rank);
 }
 
-void ElasticBlock::Impl::assemble() {
+Mat block_detail::assemble_stiffness(const GradedMesh& g, MPI_Comm comm, double young, double poisson) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const std::int32_t own_begin = g.owned_begin(rank), own_end = g.owned_end(rank);
+  auto owns = [&](std::int32_t id) { return id >= own_begin && id < own_end; };
+  auto dof = [](std::int32_t id, int c) { return 3 * PetscInt(id) + c; };
+  auto for_each_brick = [&](auto&& f) { wr::for_each_local_brick(g, rank, own_begin, own_end, f); };
   const PetscInt n_own = own_end - own_begin;
   std::vector<std::vector<std::int32_t>> cols(static_cast<std::size_t>(n_own));
-  for_each_local_brick([&](int, const std::vector<std::int32_t>& ids, const std::vector<double>&) {
+  for_each_brick([&](int, const std::vector<std::int32_t>& ids, const std::vector<double>&) {
     for (std::int32_t r : ids)
       if (owns(r)) {
         auto& v = cols[std::size_t(r - own_begin)];
@@ -141,16 +147,14 @@ void ElasticBlock::Impl::assemble() {
   check(MatMPIAIJSetPreallocation(K, 0, d_nnz.data(), 0, o_nnz.data()), "MatMPIAIJSetPreallocation");
   check(MatSetOption(K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
 
-  const GradedMesh& g = *mesh;
   std::vector<ElementMatrix> layer_k;
   for (int e = 0; e < g.layers(); ++e) {
     const int l = g.layer_level(e);
-    layer_k.push_back(brick_stiffness(g.hx(l), g.hy(l), g.planes()[e + 1].z - g.planes()[e].z, spec.young,
-                                      spec.poisson));
+    layer_k.push_back(brick_stiffness(g.hx(l), g.hy(l), g.planes()[e + 1].z - g.planes()[e].z, young, poisson));
   }
   std::vector<double> ke;
   std::vector<PetscInt> rows, colidx;
-  for_each_local_brick([&](int e, const std::vector<std::int32_t>& ids, const std::vector<double>& w) {
+  for_each_brick([&](int e, const std::vector<std::int32_t>& ids, const std::vector<double>& w) {
     const ElementMatrix& k8 = layer_k[std::size_t(e)];
     const std::size_t n = ids.size(), m3 = 3 * n;
     ke.assign(m3 * m3, 0.0);
@@ -178,7 +182,17 @@ void ElasticBlock::Impl::assemble() {
   });
   check(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  check(MatCreateVecs(K, &u, nullptr), "MatCreateVecs");
+  return K;
+}
+
+void ElasticBlock::Impl::assemble() {
+  const GradedMesh& g = *mesh;
+  Mat K = nullptr;
+  if (solver == LinearSolver::gmg) check(VecCreateMPI(comm, 3 * (own_end - own_begin), PETSC_DETERMINE, &u), "VecCreateMPI");
+  else {
+    K = assemble_stiffness(g, comm, spec.young, spec.poisson);
+    check(MatCreateVecs(K, &u, nullptr), "MatCreateVecs");
+  }
   check(VecSet(u, 0.0), "VecSet");
 
   face_slot.assign(std::size_t(g.nodes()), -1);
@@ -194,7 +208,15 @@ void ElasticBlock::Impl::assemble() {
   check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(idx.size()), &face_u), "VecCreateSeq");
   check(VecScatterCreate(u, is, face_u, nullptr, &face_scatter), "VecScatterCreate");
   ISDestroy(&is);
-  stiffness = std::make_unique<FramedStiffness>(K, own_begin, own_end, face_slot);
+  if (K) {
+    stiffness = std::make_unique<FramedStiffness>(K, own_begin, own_end, face_slot);
+    return;
+  }
+  auto mf = std::make_unique<MatrixFreeFramed>(g, comm, spec.young, spec.poisson, face_slot);
+  matrix_free = mf.get();
+  stiffness = std::move(mf);
+  gmg = std::make_unique<GeometricMultigrid>(spec.mesh, g, *matrix_free, comm, spec.young, spec.poisson,
+                                             gmg_settings_from_options());
 }
 
 }  // namespace wr

@@ -20,6 +20,8 @@
 #include "lib/contact/adaptive_damping.hpp"
 #include "lib/core/memory_guard.hpp"
 #include "lib/fem/framed_stiffness.hpp"
+#include "lib/fem/geometric_multigrid.hpp"
+#include "lib/fem/matrix_free_framed.hpp"
 #include "lib/fem/local_bricks.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/fem/penetration_retries.hpp"
@@ -65,6 +67,11 @@ double nodes_on_this_host(MPI_Comm comm, double nodes);
 void set_convergence_test(KSP ksp, double least_reduction);
 
 using ElementMatrix = std::array<double, 24 * 24>;
+// The block's stiffness K = sum_e C_e^T K_e C_e over the bricks of `g` (hanging-node
+// interpolation C_e), as an AIJ matrix with 3 x 3 node blocks, rows of the nodes each rank of
+// `comm` owns; exact preallocation, and every rank assembles its own rows from the bricks around
+// them, so no entries travel between ranks. Collective.
+Mat assemble_stiffness(const GradedMesh& g, MPI_Comm comm, double young, double poisson);
 // Stiffness of an axis-aligned Q1 brick (hx, hy, hz), 2x2x2 Gauss (exact for the brick).
 // Local node a = ia + 2 ja + 4 ka, dof a*3 + c.
 ElementMatrix brick_stiffness(double hx, double hy, double hz, double E, double nu);
@@ -121,9 +128,12 @@ struct ElasticBlock::Impl {
   std::unique_ptr<GradedMesh> mesh;
   int rank = 0;
   PetscInt own_begin = 0, own_end = 0;  // owned node ids
-  // Khat = R^T K R in the face nodes' current constraint frames, reduced in place by the
-  // active-set solves (lib/fem/framed_stiffness.hpp); K itself is not kept.
-  std::unique_ptr<FramedStiffness> stiffness;
+  // Khat = R^T K R in the face nodes' current constraint frames, reduced by the active-set
+  // solves: assembled and reduced in place (FramedStiffness; K itself is not kept) or, under
+  // the geometric multigrid, without a matrix (MatrixFreeFramed).
+  std::unique_ptr<FramedOperator> stiffness;
+  std::unique_ptr<GeometricMultigrid> gmg;  // --solver gmg: CG's preconditioner
+  MatrixFreeFramed* matrix_free = nullptr;  // stiffness, when it is the matrix-free one
   Vec u = nullptr;  // current displacement, carried from load step to load step
   // The whole contact face, gathered on every rank (normals need the neighbours' positions).
   VecScatter face_scatter = nullptr;
@@ -151,9 +161,7 @@ struct ElasticBlock::Impl {
   }
 
   void make_grid();
-  // Exact preallocation (rows of owned nodes only; every rank assembles its own rows from the
-  // bricks around them, so no entries travel between ranks), then the brick matrices through
-  // the hanging-node interpolation: K = sum_e C_e^T K_e C_e.
+  // The stiffness operator (assembled, or matrix-free with its multigrid), u and the face's scatter.
   void assemble();
 
   void gather_face() const {
@@ -182,7 +190,8 @@ struct ElasticBlock::Impl {
     int first_its = -1;                 // CG iterations with a fresh preconditioner
     // Lean hierarchy: PtAP all at once (no symbolic scratch), for as long as these systems live.
     std::unique_ptr<ScopedDefaultOption> ptap_option;
-    LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg, LinearSolver solver);
+    LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg, LinearSolver solver,
+                  GeometricMultigrid* gmg);
     ~LinearSystems();
     LinearSystems(const LinearSystems&) = delete;
     LinearSystems& operator=(const LinearSystems&) = delete;

@@ -61,7 +61,7 @@ ElasticBlock::Impl::TopBoundary ElasticBlock::Impl::prescribe_top(const ContactL
 }
 
 ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::size_t face_nodes, AmgHierarchy amg,
-                                                 LinearSolver solver)
+                                                 LinearSolver solver, GeometricMultigrid* gmg)
     : q_all(9 * face_nodes), q_mine(q_all.size()) {
   for (Vec* v : {&uh, &b, &r, &diag, &ustar, &before_jump}) check(VecDuplicate(like, v), "VecDuplicate");
   check(KSPCreate(comm, &ksp), "KSPCreate");
@@ -69,6 +69,13 @@ ElasticBlock::Impl::LinearSystems::LinearSystems(MPI_Comm comm, Vec like, std::s
   PC pc;
   check(KSPGetPC(ksp, &pc), "KSPGetPC");
   check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  if (solver == LinearSolver::gmg) {
+    // The geometric multigrid (geometric_multigrid.hpp) on the matrix-free operator; its levels
+    // take each reduced system's constraints in solve_active_set.
+    gmg->attach(pc);
+    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+    return;
+  }
   if (solver == LinearSolver::direct) {
     // Sparse Cholesky: CHOLMOD (SuiteSparse) where the matrix lives on one rank, MUMPS across
     // ranks. CG around it converges in one iteration, and the reuse policy of the active-set

@@ -16,7 +16,10 @@ ContactSolution ElasticBlock::solve(const ContactLoad& load) {
   // the constraints' curvature): CG detects that and the cut is applied, where a Cholesky
   // factorisation would fail (CHOLMOD) or hide it (MUMPS's LDL^T). So Newton takes the AMG.
   const bool newton = load.follow_geometry && load.smooth;
-  Impl::LinearSystems s(m.comm, m.u, out.face_nodes, m.amg, newton ? LinearSolver::amg : m.solver);
+  if (newton && m.solver == LinearSolver::gmg)
+    throw std::runtime_error("Newton's iteration needs the assembled stiffness (its systems can be indefinite): "
+                             "use --solver amg with --iteration newton");
+  Impl::LinearSystems s(m.comm, m.u, out.face_nodes, m.amg, newton ? LinearSolver::amg : m.solver, m.gmg.get());
 
   // Facet normals make the iteration's map discontinuous (nodes chatter across the kinks), which
   // Aitken's smooth geometric model does not fit: on the demo's 70 % coverage scene the jumps led

@@ -30,6 +30,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "lib/fem/framed_operator.hpp"
+
 namespace wr {
 
 // a <- R a (transpose: R^T a) for the owned dofs `a` (3 per node from own_begin, as the matrix's
@@ -37,7 +39,7 @@ namespace wr {
 void rotate_face_dofs(PetscScalar* a, PetscInt own_begin, PetscInt own_end, const std::vector<std::int32_t>& face_slot,
                       const std::vector<double>& frames, bool transpose);
 
-class FramedStiffness {
+class FramedStiffness final : public FramedOperator {
  public:
   // Takes ownership of K (destroyed also when it is refused), whose frames are the identity.
   FramedStiffness(Mat K, PetscInt own_begin, PetscInt own_end, std::vector<std::int32_t> face_slot);
@@ -45,26 +47,26 @@ class FramedStiffness {
   FramedStiffness(const FramedStiffness&) = delete;
   FramedStiffness& operator=(const FramedStiffness&) = delete;
 
-  Mat mat() const { return k_; }  // Khat, reduced while an elimination is in force
-  const std::vector<double>& frames() const { return frames_; }
+  Mat mat() const override { return k_; }  // Khat, reduced while an elimination is in force
+  const std::vector<double>& frames() const override { return frames_; }
 
   // Khat <- R_new^T K R_new. Restores any elimination first.
-  void set_frames(const std::vector<double>& frames);
+  void set_frames(const std::vector<double>& frames) override;
   // Khat <- R^T (K + C) R with C the given blocks, 9 per face slot (row-major, global frame;
   // only the owned slots are read; all zero: K alone). Restores any elimination first.
-  void set_face_blocks(const std::vector<double>& blocks);
+  void set_face_blocks(const std::vector<double>& blocks) override;
   // Zeroes the rows and columns `rows` (global, owned), their diagonal set to unit_diag; b gets
   // f - Khat x on the other rows (f = 0 when null) and unit_diag x on these
   // (MatZeroRowsColumns's convention), so that the reduced system keeps x's values there.
   // x, b and f are distinct vectors like Khat's.
-  void eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b, Vec f = nullptr);
+  void eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b, Vec f = nullptr) override;
   // Undoes eliminate() (no-op without one).
-  void restore();
+  void restore() override;
   // out = (K + C) v in the original frames (v not changed; out distinct from v). Restores any
   // elimination first.
-  void multiply_unrotated(Vec v, Vec out);
+  void multiply_unrotated(Vec v, Vec out) override;
   // v <- R^T v (transpose) or R v on the owned face nodes, with the given frames.
-  void rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const;
+  void rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const override;
 
  private:
   struct Part {  // one AIJ block of the owned rows: the diagonal part, or the off-process part

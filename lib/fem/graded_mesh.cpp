@@ -102,6 +102,37 @@ void GradedMesh::parents(int plane, int i, int j, std::vector<Parent>& out) cons
   }
 }
 
+void GradedMesh::interpolation_at(const Vec3& p, std::vector<Parent>& out) const {
+  out.clear();
+  const double z = std::clamp(p.z, planes_.front().z, planes_.back().z);
+  // The layer whose [z_e, z_e+1] holds z (the lowest one on a plane between two).
+  auto above = std::upper_bound(planes_.begin() + 1, planes_.end(), z, [](double v, const Plane& q) { return v <= q.z; });
+  const int e = std::min(int(above - planes_.begin()) - 1, layers() - 1);
+  const int l = layer_level(e);
+  auto cell = [](double x, double h, int n, double& t) {
+    const int i = std::clamp(int(std::floor(x / h)), 0, n - 1);
+    t = std::clamp(x / h - i, 0.0, 1.0);
+    return i;
+  };
+  double tx, ty;
+  const int i = cell(p.x, hx(l), cells_x(l), tx), j = cell(p.y, hy(l), cells_y(l), ty);
+  const double tz = std::clamp((z - planes_[e].z) / (planes_[e + 1].z - planes_[e].z), 0.0, 1.0);
+  std::vector<Parent> ps;
+  for (int c = 0; c < 8; ++c) {
+    const double w = (c & 1 ? tx : 1 - tx) * (c & 2 ? ty : 1 - ty) * (c & 4 ? tz : 1 - tz);
+    if (w < 1e-14) continue;
+    int q, qi, qj;
+    corner(e, i, j, c, q, qi, qj);
+    ps.clear();
+    parents(q, qi, qj, ps);
+    for (const Parent& a : ps) {
+      auto it = std::find_if(out.begin(), out.end(), [&](const Parent& b) { return b.id == a.id; });
+      if (it == out.end()) out.push_back({a.id, w * a.weight});
+      else it->weight += w * a.weight;
+    }
+  }
+}
+
 void GradedMesh::corner(int layer, int i, int j, int c, int& plane, int& pi, int& pj) const {
   const int l = layer_level(layer);
   plane = layer + (c >> 2);

@@ -78,6 +78,11 @@ class GradedMesh {
   // The independent nodes behind mesh point (plane, i, j): itself (weight 1) or its 2 or 4
   // coarse neighbours. Appends to `out`.
   void parents(int plane, int i, int j, std::vector<Parent>& out) const;
+  // The trilinear interpolation of the mesh's field at point p (m; clamped into the block): the
+  // independent nodes behind the brick that holds p, with their weights (summing to 1; entries
+  // below 1e-14 dropped, ids distinct). Why: the transfers between two meshes of one block
+  // (geometric multigrid, geometric_multigrid.hpp). Replaces `out`.
+  void interpolation_at(const Vec3& p, std::vector<Parent>& out) const;
   // Corner c = a + 2 b + 4 k (a along x, b along y, k up) of brick (i, j) in `layer` as a
   // (plane, i, j) mesh point.
   void corner(int layer, int i, int j, int c, int& plane, int& pi, int& pj) const;

@@ -13,13 +13,15 @@ LinearSolver parse_linear_solver(const std::string& text, const std::string& opt
   if (text == "auto") return LinearSolver::automatic;
   if (text == "direct") return LinearSolver::direct;
   if (text == "amg") return LinearSolver::amg;
-  throw InputError(option, "must be auto, direct or amg (got '" + text + "')");
+  if (text == "gmg") return LinearSolver::gmg;
+  throw InputError(option, "must be auto, direct, amg or gmg (got '" + text + "')");
 }
 
 const char* linear_solver_name(LinearSolver s) {
   switch (s) {
     case LinearSolver::direct: return "direct";
     case LinearSolver::amg: return "amg";
+    case LinearSolver::gmg: return "gmg";
     default: return "auto";
   }
 }

@@ -10,7 +10,7 @@
 
 namespace wr {
 
-enum class LinearSolver { automatic, direct, amg };
+enum class LinearSolver { automatic, direct, amg, gmg };
 
 // Newton's systems (--iteration newton) always take the AMG path: they can be indefinite, which
 // CG detects and a Cholesky factorisation does not tolerate.
@@ -24,7 +24,7 @@ inline constexpr double kDirectSolverMaxNodes = 20000;
 // `requested` unless it is automatic; then direct for ranks == 1 and nodes <= kDirectSolverMaxNodes.
 LinearSolver resolve_linear_solver(LinearSolver requested, double nodes, int ranks);
 
-// "auto", "direct", "amg"; InputError(option, ...) for anything else.
+// "auto", "direct", "amg", "gmg"; InputError(option, ...) for anything else.
 LinearSolver parse_linear_solver(const std::string& text, const std::string& option);
 const char* linear_solver_name(LinearSolver s);
 

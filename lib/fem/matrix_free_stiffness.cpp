@@ -217,6 +217,33 @@ void MatrixFreeStiffness::diagonal(Vec d) const {
   check(VecRestoreArray(d, &dd), "VecRestoreArray");
 }
 
+void MatrixFreeStiffness::face_diagonal_blocks(const std::vector<std::int32_t>& face_slot, std::vector<double>& blocks) const {
+  const std::int32_t n_own = own_end_ - own_begin_;
+  for (std::int32_t p = 0; p < n_own; ++p) {
+    const std::int32_t s = face_slot[std::size_t(own_begin_ + p)];
+    if (s >= 0) std::fill(&blocks[9 * std::size_t(s)], &blocks[9 * std::size_t(s)] + 9, 0.0);
+  }
+  for (std::size_t b = 0; b < layer_.size(); ++b) {
+    const std::uint32_t* cs = &corner_[8 * b];
+    const double* k = layer_k_[std::size_t(layer_[b])].data();
+    for (int a = 0; a < 8; ++a)
+      for (std::uint32_t ka = cs[a]; ka < cs[a + 1]; ++ka) {
+        const std::int32_t p = node_[ka];
+        if (p >= n_own) continue;
+        const std::int32_t s = face_slot[std::size_t(own_begin_ + p)];
+        if (s < 0) continue;
+        double* out = &blocks[9 * std::size_t(s)];
+        for (int c = 0; c < 8; ++c)
+          for (std::uint32_t kc = cs[c]; kc < cs[c + 1]; ++kc) {
+            if (node_[kc] != p) continue;
+            const double w = weight_[ka] * weight_[kc];
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) out[3 * i + j] += w * k[(3 * a + i) * 24 + 3 * c + j];
+          }
+      }
+  }
+}
+
 PetscErrorCode MatrixFreeStiffness::shell_mult(Mat A, Vec x, Vec y) {
   void* ctx = nullptr;
   PetscCall(MatShellGetContext(A, &ctx));

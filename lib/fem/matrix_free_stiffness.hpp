@@ -43,6 +43,10 @@ class MatrixFreeStiffness {
                        const std::vector<double>& blocks, const std::vector<PetscInt>& eliminated, double unit_diag) const;
   // d = diag(K): Jacobi's and Chebyshev's smoothers' only need of the matrix.
   void diagonal(Vec d) const;
+  // The 3 x 3 diagonal blocks of K (row-major) of the owned nodes with face_slot[node] >= 0,
+  // written at 9 face_slot[node] of `blocks` (sized 9 x face slots; other entries untouched): what
+  // the framed operator's diagonal needs, the face nodes' dofs being rotated.
+  void face_diagonal_blocks(const std::vector<std::int32_t>& face_slot, std::vector<double>& blocks) const;
   // A MATSHELL of this operator (MatMult, MatGetDiagonal), for KSP; owned by this object.
   Mat mat() const { return shell_; }
   std::size_t bricks() const { return layer_.size(); }

@@ -64,6 +64,9 @@ void check_contact_scene(const ContactScene& s) {
   if (s.solver == LinearSolver::direct && s.iteration == ContactIteration::newton)
     throw InputError("--solver", "direct (Cholesky) needs positive definite systems; Newton's can be indefinite: "
                                  "use --solver amg or auto with --iteration newton");
+  if (s.solver == LinearSolver::gmg && s.iteration == ContactIteration::newton)
+    throw InputError("--solver", "gmg applies the stiffness without a matrix; Newton's systems (curvature blocks, "
+                                 "possibly indefinite) need the assembled one: use --solver amg or auto with --iteration newton");
   if (!(s.pressure >= 0 && std::isfinite(s.pressure))) throw InputError("--pressure", "must be a finite pressure >= 0 Pa");
   const bool load_control = s.model != ContactModel::fem && s.pressure > 0;
   check_shared_contact_options({s.shear, !load_control, s.uz, s.ux, s.normal_steps, s.shear_steps, s.refine, s.young,
