@@ -37,7 +37,7 @@ namespace wr::app {
 namespace {
 
 struct ContactCli {
-  std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu;
+  std::string surface, wet, problem = "normal", json, petsc, model = "fem", out, vtu, checkpoint, restart;
   SceneCli sc;  // every scene option (app/scene_options.hpp); `contact`'s defaults set in add_contact
   bool quiet = false, trace = false;
   // Where --json and --out are written (OutputSet staging paths; committed together).
@@ -281,6 +281,9 @@ int run_contact(ContactCli c) {
   }
   Validity validity{model, validity_checks(model, req), {}};
   validity.json = validity_json(model, validity.checks, c.model == "auto" ? "auto" : "user");
+  if (model != ContactModel::fem && (!c.checkpoint.empty() || !c.restart.empty()))
+    throw InputError(c.restart.empty() ? "--checkpoint" : "--restart",
+                     std::string("the ") + model_name(model) + " model takes seconds per step: checkpoints are for fem");
   if (model != ContactModel::fem && !c.vtu.empty())
     throw InputError("--vtu", std::string("the ") + model_name(model) + " model has no block to write; --vtu is for fem");
   if (model == ContactModel::analytic) return run_analytic(c, s, req, validity, outputs);
@@ -296,6 +299,8 @@ int run_contact(ContactCli c) {
   hooks.progress_every_s = c.quiet ? 0 : 10;
   hooks.trace = c.trace;
   hooks.vtu_path = vtu_stage;
+  hooks.checkpoint_path = c.checkpoint;
+  hooks.restart_path = c.restart;
   hooks.ground = ground ? &ground->map : nullptr;
   // Every option checked before PETSc starts (comm MPI_COMM_NULL: PETSC_COMM_WORLD at run time).
   fem_test_options(scene, s.map, ground ? ground->map : s.map, MPI_COMM_NULL, hooks);
@@ -443,6 +448,14 @@ Command add_contact(CLI::App& root) {
   s->add_option("--json", c->json, "write the per-step results as JSON (SI units)")->type_name("OUTPUT");
   s->add_option("--out", c->out, "write per-step contact-face maps (pressure Pa, gap m, status) to HDF5")->type_name("OUTPUT");
   s->add_option("--vtu", c->vtu, "write the deformed block of the last step for ParaView (.vtu)")->type_name("OUTPUT");
+  s->add_option("--checkpoint", c->checkpoint,
+                "fem: after every converged load step, save the run's state to FILE (and FILE.0.*, FILE.1.*), so "
+                "that --restart can continue it after a kill or a wall-time limit")
+      ->type_name("FILE");
+  s->add_option("--restart", c->restart,
+                "fem: continue the run from the checkpoint FILE (same surface, options and rank count; the steps it "
+                "holds are reported as this run's); may name the --checkpoint file")
+      ->type_name("FILE");
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");
   s->add_flag("--trace", c->trace, "print every Signorini iteration (change, contact nodes, iterations, forces, deepest node of the iterate and of u*, time); with --iteration newton also, after each converged step, whether the whole curvature term leaves the system definite there (docs/fem-solver.md, the second-order check)");

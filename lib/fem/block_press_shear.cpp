@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <utility>
 
 #include "lib/contact/friction_convergence.hpp"
 #include "lib/core/errors.hpp"
+#include "lib/fem/contact_checkpoint.hpp"
 
 namespace wr {
 namespace {
@@ -125,6 +127,11 @@ void check_fem_options(const ContactTestOptions& o) {
     throw InputError("--cutbacks", "cannot be combined with --coarse-start (the coarse block's state is not rewound)");
   if (o.coarse_refine < 0 || (o.coarse_refine > 0 && (o.coarse_refine >= o.refine || o.refine % o.coarse_refine)))
     throw InputError("--coarse-start", "must be 0 (off) or a refinement below --refine that divides it");
+  if ((!o.checkpoint_path.empty() || !o.restart_path.empty()) && o.coarse_refine > 0)
+    throw InputError(o.restart_path.empty() ? "--checkpoint" : "--restart",
+                     "cannot be combined with --coarse-start (the coarse block's state is not kept)");
+  if (!o.restart_path.empty() && !std::filesystem::exists(o.restart_path))
+    throw InputError("--restart", o.restart_path + ": no such checkpoint");
 }
 
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
@@ -227,7 +234,42 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   double wasted_s = 0;                  // wall time of failed attempts, charged to the next step
   int failed_attempts = 0;
   int first_shear_iterations = 0;       // to_peak: the reference of adapt_shear_step
-  for (std::size_t k = 0; k < plan.size(); ++k) {
+  std::size_t k_start = 0;
+  const std::uint64_t fingerprint =
+      opt.checkpoint_path.empty() && opt.restart_path.empty() ? 0 : contact_fingerprint(obstacle, opt);
+  if (!opt.restart_path.empty()) {
+    ContactCheckpoint c = read_contact_checkpoint(opt.restart_path, fingerprint, block.comm());
+    plan = std::move(c.plan);
+    k_start = c.next;
+    last = c.last;
+    prev = c.prev;
+    first_shear_iterations = c.first_shear_iterations;
+    block.restore(c.last_state);
+    if (keep_states) last_state = std::move(c.last_state);
+    if (predict) prev_state = std::move(c.prev_state);
+    res.steps = std::move(c.steps);
+    if ((opt.trace || opt.progress_every_s > 0) && rank_of(opt.comm) == 0)
+      std::fprintf(stderr, "  restarted from %s: %zu converged steps, at uz %.4g m, ux %.4g m\n", opt.restart_path.c_str(),
+                   res.steps.size(), last.uz, last.ux);
+    if (on_step)
+      for (const ContactStep& st : res.steps) on_step(st);
+  }
+  // After each converged step: the state a restart continues from.
+  auto checkpoint = [&](std::size_t next) {
+    if (opt.checkpoint_path.empty()) return;
+    ContactCheckpoint c;
+    c.fingerprint = fingerprint;
+    c.next = next;
+    c.plan = plan;
+    c.last = last;
+    c.prev = prev;
+    c.first_shear_iterations = first_shear_iterations;
+    c.steps = res.steps;
+    c.last_state = keep_states ? last_state : block.state();
+    c.prev_state = prev_state;
+    write_contact_checkpoint(opt.checkpoint_path, c, block.comm());
+  };
+  for (std::size_t k = k_start; k < plan.size(); ++k) {
     load.uz = plan[k].uz;
     load.ux = plan[k].ux;
     const double t0 = MPI_Wtime();
@@ -336,7 +378,11 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     if (predict) prev_state = std::move(last_state);
     if (keep_states) last_state = block.state();
     if (opt.to_peak && opt.shear && step_ux > 0) {
-      if (peak_reached(res.steps)) break;  // the curve turned over: the static friction is found
+      if (peak_reached(res.steps)) {  // the curve turned over: the static friction is found
+        plan.resize(k + 1);
+        checkpoint(k + 1);
+        break;
+      }
       if (first_shear_iterations == 0) first_shear_iterations = s.outer_iterations;
       // The rest of the shear phase, re-planned from here: one step, sized by this one's work.
       plan.erase(plan.begin() + std::ptrdiff_t(k) + 1, plan.end());
@@ -347,6 +393,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       if ((opt.trace || opt.progress_every_s > 0) && rank_of(opt.comm) == 0 && plan.size() > k + 1)
         std::fprintf(stderr, "  shear to the peak: mu %.4f at ux %.4g m; next step to ux %.4g m\n", st.mu, last.ux, next);
     }
+    checkpoint(k + 1);
   }
   if (!opt.vtu_path.empty()) block.write_vtu(opt.vtu_path);
   res.wall_s = MPI_Wtime() - t_start;

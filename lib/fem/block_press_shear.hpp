@@ -87,6 +87,11 @@ struct ContactTestOptions {
   // mu 0.349 at 5.5 mm against 0.450 at 7 mm; docs/fem-solver.md). A coarse start (coarse_refine) chooses
   // the start itself, and the predictor then stays off.
   SecantPredictor secant_predictor = SecantPredictor::press;
+  // Checkpoints (contact_checkpoint.hpp): written here after every converged load step when set;
+  // a run with restart_path set continues from the checkpoint there (the same surface, options
+  // and rank count), reporting the steps it holds as its own. Both may name one file.
+  std::string checkpoint_path{};
+  std::string restart_path{};
 };
 
 // One load state of the plan: the top's displacement and the halvings still allowed on the way

@@ -57,6 +57,7 @@ BlockState ElasticBlock::state() const {
   check(VecRestoreArrayRead(m.u, &a), "VecRestoreArrayRead");
   s.active = m.active;
   s.lambda = m.lambda;
+  s.softening_scale = m.softening_scale;
   return s;
 }
 
@@ -72,6 +73,7 @@ void ElasticBlock::restore(const BlockState& s) {
   check(VecRestoreArray(m.u, &a), "VecRestoreArray");
   m.active = s.active;
   m.lambda = s.lambda;
+  m.softening_scale = s.softening_scale;
 }
 
 std::vector<double> ElasticBlock::face_displacement() const {

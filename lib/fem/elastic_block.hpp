@@ -141,6 +141,7 @@ struct BlockState {
   std::vector<double> u;
   std::vector<char> active;
   std::vector<double> lambda;  // Newton: contact multipliers of the face nodes (N per unit gradient)
+  double softening_scale = 1;  // Newton: the cut of the curvature's softening part (ElasticBlock::Impl)
 };
 
 // Builds the mesh and the stiffness matrix once; solve() may be called for many loads and

@@ -255,6 +255,16 @@ void FramedStiffness::restore() {
   eliminated_ = false;
 }
 
+void FramedStiffness::reset(Mat k0) {
+  restore();
+  check(MatCopy(k0, k_, SAME_NONZERO_PATTERN), "MatCopy");
+  for (std::size_t s = 0; s < face_slots_; ++s) {
+    std::fill(&frames_[9 * s], &frames_[9 * s] + 9, 0.0);
+    frames_[9 * s] = frames_[9 * s + 4] = frames_[9 * s + 8] = 1.0;
+  }
+  face_blocks_.clear();
+}
+
 void FramedStiffness::multiply_unrotated(Vec v, Vec out) {
   restore();
   if (!work_) check(MatCreateVecs(k_, &work_, nullptr), "MatCreateVecs");

@@ -62,6 +62,10 @@ class FramedStiffness final : public FramedOperator {
   void eliminate(const std::vector<PetscInt>& rows, double unit_diag, Vec x, Vec b, Vec f = nullptr) override;
   // Undoes eliminate() (no-op without one).
   void restore() override;
+  // Khat <- K0 (frames the identity, no blocks), K0 a matrix of Khat's layout and pattern: a
+  // fresh start whose later rotations do not depend on the earlier ones (same Mat object, so a
+  // factorisation keeps its symbolic phase).
+  void reset(Mat k0);
   // out = (K + C) v in the original frames (v not changed; out distinct from v). Restores any
   // elimination first.
   void multiply_unrotated(Vec v, Vec out) override;

@@ -217,6 +217,8 @@ ContactTestOptions fem_test_options(const ContactScene& s, const HeightMap& obst
   o.comm = comm;
   o.face_maps = hooks.face_maps;
   o.vtu_path = hooks.vtu_path;
+  o.checkpoint_path = hooks.checkpoint_path;
+  o.restart_path = hooks.restart_path;
   o.progress_every_s = hooks.progress_every_s;
   o.trace = hooks.trace;
   check_fem_options(o);

@@ -86,6 +86,8 @@ struct SceneRunHooks {
   std::string vtu_path;           // fem: write the deformed block of the last step
   double progress_every_s = 0;    // fem: a progress line at most this often within a step
   bool trace = false;             // fem: every Signorini iteration on stderr
+  std::string checkpoint_path;    // fem: write a checkpoint after every converged step (contact_checkpoint.hpp)
+  std::string restart_path;       // fem: continue from this checkpoint
 };
 
 struct SceneResult {
