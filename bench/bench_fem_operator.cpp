@@ -45,6 +45,7 @@ nlohmann::json fem_operator(int size, const std::vector<int>& refines, int repea
     b.mesh.nx = b.mesh.ny = size * refine;
     b.young = 1e7;
     b.poisson = 0.45;
+    b.solver = LinearSolver::amg;  // the assembled matrix is the comparison
     const double t0 = now();
     ElasticBlock block(b);
     const double t_assembled = now() - t0;

@@ -250,6 +250,11 @@ TEST(LinearSolver, AutomaticIsDirectOnSmallOneRankBlocksOnly) {
   EXPECT_EQ(parse_linear_solver("direct", "--solver"), LinearSolver::direct);
   EXPECT_EQ(parse_linear_solver("gmg", "--solver"), LinearSolver::gmg);
   EXPECT_EQ(resolve_linear_solver(LinearSolver::gmg, 1e4, 1), LinearSolver::gmg);
+  // Large blocks: the matrix-free multigrid, in press and shear, but never for Newton.
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e6, 2), LinearSolver::gmg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e6, 2, {true, false}), LinearSolver::gmg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e6, 2, {false, true}), LinearSolver::amg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e4, 1, {true, false}), LinearSolver::amg);
   EXPECT_THROW(parse_linear_solver("cholmod", "--solver"), InputError);
 }
 

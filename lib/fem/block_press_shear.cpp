@@ -162,10 +162,9 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     b.poisson = opt.poisson;
     b.comm = opt.comm;
     b.amg = opt.amg;
-    // The shear test's systems change more between Signorini iterations, so a kept factor
-    // preconditions them worse: measured, the direct solver lost at every size there
-    // (docs/performance.md "Direct or AMG"). automatic means AMG for it.
-    b.solver = opt.shear && opt.solver == LinearSolver::automatic ? LinearSolver::amg : opt.solver;
+    // automatic: by the block's size and use (linear_solver.hpp).
+    b.solver = opt.solver;
+    b.use = {opt.shear, opt.iteration == ContactIteration::newton};
     return b;
   };
   const BlockSpec b = block_spec(opt.refine);

@@ -12,7 +12,7 @@ ElasticBlock::ElasticBlock(const BlockSpec& spec) : impl_(new Impl) {
                                      double(physical_memory_bytes()));
   int ranks = 1;
   MPI_Comm_size(impl_->comm, &ranks);
-  impl_->solver = resolve_linear_solver(spec.solver, double(impl_->mesh->nodes()), ranks);
+  impl_->solver = resolve_linear_solver(spec.solver, double(impl_->mesh->nodes()), ranks, spec.use);
   impl_->assemble();
 }
 

@@ -41,8 +41,10 @@ struct BlockSpec {
   // not fit in this host's memory. PETSc options given by the user (-pc_gamg_agg_nsmooths,
   // -matptap_via) win over either.
   AmgHierarchy amg = AmgHierarchy::automatic;
-  // Sparse Cholesky or AMG (linear_solver.hpp); automatic: by the block's node count.
+  // Sparse Cholesky, AMG or the matrix-free multigrid (linear_solver.hpp); automatic: by the
+  // block's node count and `use`.
   LinearSolver solver = LinearSolver::automatic;
+  LinearSolverUse use;
 };
 
 enum class TopCondition { fixed, frictionless };  // top face: all components prescribed, or only z

@@ -4,8 +4,11 @@
 
 namespace wr {
 
-LinearSolver resolve_linear_solver(LinearSolver requested, double nodes, int ranks) {
+LinearSolver resolve_linear_solver(LinearSolver requested, double nodes, int ranks, LinearSolverUse use) {
   if (requested != LinearSolver::automatic) return requested;
+  if (use.newton) return LinearSolver::amg;
+  if (nodes >= kGmgMinNodes) return LinearSolver::gmg;
+  if (use.shear) return LinearSolver::amg;
   return ranks == 1 && nodes <= kDirectSolverMaxNodes ? LinearSolver::direct : LinearSolver::amg;
 }
 

@@ -13,16 +13,28 @@ namespace wr {
 enum class LinearSolver { automatic, direct, amg, gmg };
 
 // Newton's systems (--iteration newton) always take the AMG path: they can be indefinite, which
-// CG detects and a Cholesky factorisation does not tolerate.
-// automatic: direct up to this many independent nodes on one rank, AMG above and on several
-// ranks (MUMPS, the parallel factorisation, is not measured to win there). The press-and-shear
-// driver (block_press_shear.hpp) takes AMG for a shear test before this rule: the direct solver
-// was 1.5-1.9x slower in shear at every size measured, 10-28 % faster pressing 1-11k nodes.
+// CG detects and a Cholesky factorisation does not tolerate, and they carry curvature blocks the
+// matrix-free operator does not.
+// automatic, in this order:
+// - Newton: AMG;
+// - from kGmgMinNodes nodes: the matrix-free geometric multigrid (gmg). On the thesis scene it
+//   pressed in 0.71x AMG's time with 0.21x its memory at refine 1 (325k nodes) and ran its first
+//   four iterations in 0.55x the time with 0.19x the memory at refine 2 (1.05M nodes), 2 ranks
+//   (docs/performance.md "Geometric multigrid against AMG", 2026-12-07);
+// - a shear test: AMG (the direct solver was 1.5-1.9x slower in shear at every size measured);
+// - direct up to kDirectSolverMaxNodes nodes on one rank (10-28 % faster pressing 1-11k nodes),
+//   AMG above and on several ranks (MUMPS is not measured to win there).
 // scripts/bench-fem-solver.sh (docs/performance.md "Direct or AMG", 2026-12-06).
 inline constexpr double kDirectSolverMaxNodes = 20000;
+inline constexpr double kGmgMinNodes = 250000;
 
-// `requested` unless it is automatic; then direct for ranks == 1 and nodes <= kDirectSolverMaxNodes.
-LinearSolver resolve_linear_solver(LinearSolver requested, double nodes, int ranks);
+// What the block will solve, for automatic's choice.
+struct LinearSolverUse {
+  bool shear = false;
+  bool newton = false;
+};
+// `requested` unless it is automatic; then the rule above.
+LinearSolver resolve_linear_solver(LinearSolver requested, double nodes, int ranks, LinearSolverUse use = {});
 
 // "auto", "direct", "amg", "gmg"; InputError(option, ...) for anything else.
 LinearSolver parse_linear_solver(const std::string& text, const std::string& option);
