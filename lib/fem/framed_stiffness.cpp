@@ -291,11 +291,16 @@ void rotate_face_dofs(PetscScalar* a, PetscInt own_begin, PetscInt own_end, cons
   }
 }
 
-void FramedStiffness::rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const {
+void rotate_face_dofs(Vec v, PetscInt own_begin, PetscInt own_end, const std::vector<std::int32_t>& face_slot,
+                      const std::vector<double>& frames, bool transpose) {
   PetscScalar* a;
   check(VecGetArray(v, &a), "VecGetArray");
-  rotate_face_dofs(a, own_begin_, own_end_, face_slot_, frames, transpose);
+  rotate_face_dofs(a, own_begin, own_end, face_slot, frames, transpose);
   check(VecRestoreArray(v, &a), "VecRestoreArray");
+}
+
+void FramedStiffness::rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const {
+  rotate_face_dofs(v, own_begin_, own_end_, face_slot_, frames, transpose);
 }
 
 }  // namespace wr

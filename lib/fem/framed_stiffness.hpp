@@ -38,6 +38,9 @@ namespace wr {
 // rows): Q = frames[9 slot ...] (row-major) on every owned face node, the identity elsewhere.
 void rotate_face_dofs(PetscScalar* a, PetscInt own_begin, PetscInt own_end, const std::vector<std::int32_t>& face_slot,
                       const std::vector<double>& frames, bool transpose);
+// The same on a vector of that layout.
+void rotate_face_dofs(Vec v, PetscInt own_begin, PetscInt own_end, const std::vector<std::int32_t>& face_slot,
+                      const std::vector<double>& frames, bool transpose);
 
 class FramedStiffness final : public FramedOperator {
  public:

@@ -153,13 +153,6 @@ void zero_rows(Vec v, const std::vector<PetscInt>& rows, PetscInt first) {
   check(VecRestoreArray(v, &a), "VecRestoreArray");
 }
 
-void rotate(Vec v, std::int32_t ob, std::int32_t oe, const std::vector<std::int32_t>& slot, const std::vector<double>& frames, bool transpose) {
-  PetscScalar* a;
-  check(VecGetArray(v, &a), "VecGetArray");
-  rotate_face_dofs(a, ob, oe, slot, frames, transpose);
-  check(VecRestoreArray(v, &a), "VecRestoreArray");
-}
-
 double mean_entry(Vec v) {
   PetscScalar sum = 0;
   PetscInt n = 0;
@@ -510,9 +503,9 @@ void GeometricMultigrid::restrict_to(std::size_t k, Vec fine_r, Vec coarse_b) {
   Level& C = *levels_[k + 1];
   check(VecCopy(fine_r, F.t), "VecCopy");
   zero_rows(F.t, F.current_eliminated(), 3 * PetscInt(F.own_begin));
-  rotate(F.t, F.own_begin, F.own_end, F.face_slot, F.current_frames(), false);
+  rotate_face_dofs(F.t, F.own_begin, F.own_end, F.face_slot, F.current_frames(), false);
   check(MatMultTranspose(F.interp, F.t, coarse_b), "MatMultTranspose");
-  rotate(coarse_b, C.own_begin, C.own_end, C.face_slot, C.current_frames(), true);
+  rotate_face_dofs(coarse_b, C.own_begin, C.own_end, C.face_slot, C.current_frames(), true);
   zero_rows(coarse_b, C.current_eliminated(), 3 * PetscInt(C.own_begin));
 }
 
@@ -521,9 +514,9 @@ void GeometricMultigrid::prolong_add(std::size_t k, Vec coarse_x, Vec fine_x) {
   Level& C = *levels_[k + 1];
   check(VecCopy(coarse_x, C.t), "VecCopy");
   zero_rows(C.t, C.current_eliminated(), 3 * PetscInt(C.own_begin));
-  rotate(C.t, C.own_begin, C.own_end, C.face_slot, C.current_frames(), false);
+  rotate_face_dofs(C.t, C.own_begin, C.own_end, C.face_slot, C.current_frames(), false);
   check(MatMult(F.interp, C.t, F.t), "MatMult");
-  rotate(F.t, F.own_begin, F.own_end, F.face_slot, F.current_frames(), true);
+  rotate_face_dofs(F.t, F.own_begin, F.own_end, F.face_slot, F.current_frames(), true);
   zero_rows(F.t, F.current_eliminated(), 3 * PetscInt(F.own_begin));
   check(VecAXPY(fine_x, 1.0, F.t), "VecAXPY");
 }

@@ -27,8 +27,11 @@ MatrixFreeFramed::MatrixFreeFramed(const GradedMesh& mesh, MPI_Comm comm, double
   check(VecDuplicate(diag_k_, &work_), "VecDuplicate");
   k_.diagonal(diag_k_);
   check(MatCreateShell(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, this, &shell_), "MatCreateShell");
-  check(MatShellSetOperation(shell_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shell_mult)), "MatShellSetOperation");
-  check(MatShellSetOperation(shell_, MATOP_GET_DIAGONAL, reinterpret_cast<void (*)(void)>(&shell_diagonal)),
+  check(MatShellSetOperation(shell_, MATOP_MULT,
+                             reinterpret_cast<void (*)(void)>(&shell_operation<MatrixFreeFramed, &MatrixFreeFramed::multiply, Vec, Vec>)),
+        "MatShellSetOperation");
+  check(MatShellSetOperation(shell_, MATOP_GET_DIAGONAL,
+                             reinterpret_cast<void (*)(void)>(&shell_operation<MatrixFreeFramed, &MatrixFreeFramed::diagonal, Vec>)),
         "MatShellSetOperation");
   check(MatSetOption(shell_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
 }
@@ -164,32 +167,7 @@ void MatrixFreeFramed::multiply_unrotated(Vec v, Vec out) {
 }
 
 void MatrixFreeFramed::rotate_vector(Vec v, const std::vector<double>& frames, bool transpose) const {
-  PetscScalar* a;
-  check(VecGetArray(v, &a), "VecGetArray");
-  rotate_face_dofs(a, own_begin_, own_end_, face_slot_, frames, transpose);
-  check(VecRestoreArray(v, &a), "VecRestoreArray");
-}
-
-PetscErrorCode MatrixFreeFramed::shell_mult(Mat A, Vec x, Vec y) {
-  void* ctx = nullptr;
-  PetscCall(MatShellGetContext(A, &ctx));
-  try {
-    static_cast<const MatrixFreeFramed*>(ctx)->multiply(x, y);
-  } catch (const std::exception&) {
-    return PETSC_ERR_LIB;
-  }
-  return 0;
-}
-
-PetscErrorCode MatrixFreeFramed::shell_diagonal(Mat A, Vec d) {
-  void* ctx = nullptr;
-  PetscCall(MatShellGetContext(A, &ctx));
-  try {
-    static_cast<const MatrixFreeFramed*>(ctx)->diagonal(d);
-  } catch (const std::exception&) {
-    return PETSC_ERR_LIB;
-  }
-  return 0;
+  rotate_face_dofs(v, own_begin_, own_end_, face_slot_, frames, transpose);
 }
 
 }  // namespace wr

@@ -53,8 +53,6 @@ class MatrixFreeFramed final : public FramedOperator {
   std::size_t memory_bytes() const;
 
  private:
-  static PetscErrorCode shell_mult(Mat A, Vec x, Vec y);
-  static PetscErrorCode shell_diagonal(Mat A, Vec d);
   void bump_state();
 
   MatrixFreeStiffness k_;

@@ -66,8 +66,11 @@ MatrixFreeStiffness::MatrixFreeStiffness(const GradedMesh& g, MPI_Comm comm, dou
   check(MatCreateShell(comm, 3 * n_own, 3 * n_own, PETSC_DETERMINE, PETSC_DETERMINE, const_cast<MatrixFreeStiffness*>(this),
                        &shell_),
         "MatCreateShell");
-  check(MatShellSetOperation(shell_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shell_mult)), "MatShellSetOperation");
-  check(MatShellSetOperation(shell_, MATOP_GET_DIAGONAL, reinterpret_cast<void (*)(void)>(&shell_diagonal)),
+  check(MatShellSetOperation(shell_, MATOP_MULT,
+                             reinterpret_cast<void (*)(void)>(&shell_operation<MatrixFreeStiffness, &MatrixFreeStiffness::multiply, Vec, Vec>)),
+        "MatShellSetOperation");
+  check(MatShellSetOperation(shell_, MATOP_GET_DIAGONAL,
+                             reinterpret_cast<void (*)(void)>(&shell_operation<MatrixFreeStiffness, &MatrixFreeStiffness::diagonal, Vec>)),
         "MatShellSetOperation");
   check(MatSetOption(shell_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
 }
@@ -193,77 +196,48 @@ void MatrixFreeStiffness::multiply_framed(Vec x, Vec y, const std::vector<std::i
   check(VecRestoreArray(y, &yo), "VecRestoreArray");
 }
 
-void MatrixFreeStiffness::diagonal(Vec d) const {
-  PetscScalar* dd = nullptr;
-  check(VecGetArray(d, &dd), "VecGetArray");
+// Calls f(p, w, k, a, c) for every pair of corners (a, c) of a brick that both lie on the owned
+// local node p: w their weights' product, k the brick's layer matrix (row-major). The node's
+// 3 x 3 diagonal block is the sum of w K8[3a + i][3c + j] over these pairs.
+template <class F>
+void MatrixFreeStiffness::for_each_self_pair(F&& f) const {
   const std::int32_t n_own = own_end_ - own_begin_;
-  std::fill(dd, dd + 3 * std::size_t(n_own), 0.0);
   for (std::size_t b = 0; b < layer_.size(); ++b) {
     const std::uint32_t* cs = &corner_[8 * b];
     const double* k = layer_k_[std::size_t(layer_[b])].data();
-    // K_pp,ii = sum over corner pairs (a, b) of w_a,p w_b,p K8[3a + i][3b + i].
     for (int a = 0; a < 8; ++a)
       for (std::uint32_t ka = cs[a]; ka < cs[a + 1]; ++ka) {
         const std::int32_t p = node_[ka];
         if (p >= n_own) continue;
         for (int c = 0; c < 8; ++c)
-          for (std::uint32_t kc = cs[c]; kc < cs[c + 1]; ++kc) {
-            if (node_[kc] != p) continue;
-            const double w = weight_[ka] * weight_[kc];
-            for (int i = 0; i < 3; ++i) dd[3 * std::size_t(p) + i] += w * k[(3 * a + i) * 24 + 3 * c + i];
-          }
+          for (std::uint32_t kc = cs[c]; kc < cs[c + 1]; ++kc)
+            if (node_[kc] == p) f(p, weight_[ka] * weight_[kc], k, a, c);
       }
   }
+}
+
+void MatrixFreeStiffness::diagonal(Vec d) const {
+  PetscScalar* dd = nullptr;
+  check(VecGetArray(d, &dd), "VecGetArray");
+  std::fill(dd, dd + 3 * std::size_t(own_end_ - own_begin_), 0.0);
+  for_each_self_pair([&](std::int32_t p, double w, const double* k, int a, int c) {
+    for (int i = 0; i < 3; ++i) dd[3 * std::size_t(p) + i] += w * k[(3 * a + i) * 24 + 3 * c + i];
+  });
   check(VecRestoreArray(d, &dd), "VecRestoreArray");
 }
 
 void MatrixFreeStiffness::face_diagonal_blocks(const std::vector<std::int32_t>& face_slot, std::vector<double>& blocks) const {
-  const std::int32_t n_own = own_end_ - own_begin_;
-  for (std::int32_t p = 0; p < n_own; ++p) {
+  for (std::int32_t p = 0; p < own_end_ - own_begin_; ++p) {
     const std::int32_t s = face_slot[std::size_t(own_begin_ + p)];
     if (s >= 0) std::fill(&blocks[9 * std::size_t(s)], &blocks[9 * std::size_t(s)] + 9, 0.0);
   }
-  for (std::size_t b = 0; b < layer_.size(); ++b) {
-    const std::uint32_t* cs = &corner_[8 * b];
-    const double* k = layer_k_[std::size_t(layer_[b])].data();
-    for (int a = 0; a < 8; ++a)
-      for (std::uint32_t ka = cs[a]; ka < cs[a + 1]; ++ka) {
-        const std::int32_t p = node_[ka];
-        if (p >= n_own) continue;
-        const std::int32_t s = face_slot[std::size_t(own_begin_ + p)];
-        if (s < 0) continue;
-        double* out = &blocks[9 * std::size_t(s)];
-        for (int c = 0; c < 8; ++c)
-          for (std::uint32_t kc = cs[c]; kc < cs[c + 1]; ++kc) {
-            if (node_[kc] != p) continue;
-            const double w = weight_[ka] * weight_[kc];
-            for (int i = 0; i < 3; ++i)
-              for (int j = 0; j < 3; ++j) out[3 * i + j] += w * k[(3 * a + i) * 24 + 3 * c + j];
-          }
-      }
-  }
-}
-
-PetscErrorCode MatrixFreeStiffness::shell_mult(Mat A, Vec x, Vec y) {
-  void* ctx = nullptr;
-  PetscCall(MatShellGetContext(A, &ctx));
-  try {
-    static_cast<const MatrixFreeStiffness*>(ctx)->multiply(x, y);
-  } catch (const std::exception&) {
-    return PETSC_ERR_LIB;
-  }
-  return 0;
-}
-
-PetscErrorCode MatrixFreeStiffness::shell_diagonal(Mat A, Vec d) {
-  void* ctx = nullptr;
-  PetscCall(MatShellGetContext(A, &ctx));
-  try {
-    static_cast<const MatrixFreeStiffness*>(ctx)->diagonal(d);
-  } catch (const std::exception&) {
-    return PETSC_ERR_LIB;
-  }
-  return 0;
+  for_each_self_pair([&](std::int32_t p, double w, const double* k, int a, int c) {
+    const std::int32_t s = face_slot[std::size_t(own_begin_ + p)];
+    if (s < 0) return;
+    double* out = &blocks[9 * std::size_t(s)];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) out[3 * i + j] += w * k[(3 * a + i) * 24 + 3 * c + j];
+  });
 }
 
 }  // namespace wr

@@ -18,12 +18,27 @@
 #include <petscmat.h>
 
 #include <array>
+#include <exception>
 #include <cstdint>
 #include <vector>
 
 #include "lib/fem/graded_mesh.hpp"
 
 namespace wr {
+
+// A MATSHELL operation (MatMult: V = Vec, Vec; MatGetDiagonal: V = Vec) that calls M on the shell's
+// context, a T, turning an exception into a PETSc error.
+template <class T, auto M, class... V>
+PetscErrorCode shell_operation(Mat A, V... v) {
+  void* ctx = nullptr;
+  PetscCall(MatShellGetContext(A, &ctx));
+  try {
+    (static_cast<const T*>(ctx)->*M)(v...);
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
 
 class MatrixFreeStiffness {
  public:
@@ -53,8 +68,8 @@ class MatrixFreeStiffness {
   std::size_t memory_bytes() const;  // the brick list, layer matrices and ghost buffer
 
  private:
-  static PetscErrorCode shell_mult(Mat A, Vec x, Vec y);
-  static PetscErrorCode shell_diagonal(Mat A, Vec d);
+  template <class F>
+  void for_each_self_pair(F&& f) const;  // the bricks' couplings of an owned node with itself
 
   MPI_Comm comm_;
   std::int32_t own_begin_ = 0, own_end_ = 0;
