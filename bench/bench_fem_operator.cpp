@@ -84,6 +84,8 @@ nlohmann::json fem_operator(int size, const std::vector<int>& refines, int repea
                           {"aij_bytes", info.nz_used * (sizeof(PetscScalar) + sizeof(PetscInt)) + double(dofs) * sizeof(PetscInt)},
                           {"aij_nonzeros", info.nz_used},
                           {"matrix_free_bytes", mf_bytes},
+                          {"stencil_classes_rank0", double(mf.stencils().classes())},
+                          {"stencil_runs_rank0", double(mf.stencils().runs())},
                           {"assembly_s", t_assembled},
                           {"matrix_free_setup_s", t_setup},
                           {"peak_rss_bytes_rank0", double(peak_rss_bytes())}};

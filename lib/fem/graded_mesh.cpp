@@ -87,7 +87,7 @@ std::int64_t GradedMesh::elements() const {
 void GradedMesh::parents(int plane, int i, int j, std::vector<Parent>& out) const {
   const std::int32_t id = node(plane, i, j);
   if (id >= 0) {
-    out.push_back({id, 1.0});
+    out.push_back({id, 1.0, i, j});
     return;
   }
   const int i0 = i % 2 ? i - 1 : i, i1 = i % 2 ? i + 1 : i;
@@ -95,7 +95,7 @@ void GradedMesh::parents(int plane, int i, int j, std::vector<Parent>& out) cons
   const double w = (i0 == i1 ? 1.0 : 0.5) * (j0 == j1 ? 1.0 : 0.5);
   for (int jj : {j0, j1}) {
     for (int ii : {i0, i1}) {
-      out.push_back({node(plane, ii, jj), w});
+      out.push_back({node(plane, ii, jj), w, ii, jj});
       if (i0 == i1) break;
     }
     if (j0 == j1) break;

@@ -43,6 +43,7 @@ class GradedMesh {
   struct Parent {
     std::int32_t id;
     double weight;
+    int i = 0, j = 0;  // the node's place in its plane (set by parents(); not by interpolation_at())
   };
 
   const GradedMeshSpec& spec() const { return spec_; }

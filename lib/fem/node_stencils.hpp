@@ -1,0 +1,61 @@
+#pragma once
+// The block's stiffness rows as a few shared stencils (issue 58, the product's kernel). On the
+// graded brick mesh every layer is one brick repeated, so the row of K at a node (its 3 x 3
+// blocks against the nodes around it, hanging-node interpolation included) depends only on the
+// node's plane, its parity (i mod 2, j mod 2) against a coarser layer, and the block's edges.
+// Here each owned node's row is assembled once, rows equal to the last bit share one class, and
+// the product is y_n = sum_k B_ck x_(n + o_ck): about 27 blocks (43 beside a coarser layer),
+// 243 multiply-adds per node against 576 per brick, vectorised over runs of nodes of one class.
+//
+// Layout: x and y are held component by component ("SoA"), plane by plane and row by row, so that
+// a class is a run of consecutive positions along a row with the same offsets. Rows whose nodes
+// alternate between two stencils (below a plane with hanging nodes) are split, their even node
+// indices first, then their odd ones; x is held both split and unsplit, and each neighbour plane
+// is read in the layout in which a run's neighbours are consecutive too. Each row extends a few
+// cells past this rank's slab to hold the other ranks' nodes this rank's rows touch (ghosts),
+// so the slab's edges need no class of their own.
+// Contract: built for one rank of `g`'s partition; `layer_k` are the layers' 24 x 24 brick
+// matrices (row-major, corners c = a + 2 b + 4 k as GradedMesh::corner). Units: those of
+// `layer_k` (N/m). Throws std::logic_error if the mesh breaks the layout's assumptions.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "lib/fem/graded_mesh.hpp"
+
+namespace wr {
+
+class NodeStencils {
+ public:
+  NodeStencils(const GradedMesh& g, int rank, const std::vector<std::array<double, 576>>& layer_k);
+
+  // The other ranks' nodes that this rank's rows touch, in the order `apply` expects them after
+  // the owned ones.
+  const std::vector<std::int32_t>& ghost_ids() const { return ghost_ids_; }
+  // yo (3 x owned dofs) = the owned rows of K times x; xl holds the owned dofs (3 per node, node
+  // order) and then the ghosts' (ghost_ids() order). Not thread-safe: uses internal buffers.
+  void apply(const double* xl, double* yo) const;
+  // The 3 x 3 diagonal block (row-major) of owned node `k` (id - own_begin).
+  const double* self_block(std::int32_t k) const { return &self_[9 * std::size_t(k)]; }
+  std::size_t classes() const { return class_begin_.size() - 1; }
+  std::size_t runs() const { return run_start_.size(); }
+  std::size_t memory_bytes() const;
+
+ private:
+  std::int32_t owned_ = 0;
+  std::vector<std::int32_t> ghost_ids_;
+  std::vector<std::int32_t> position_;             // owned node -> its row's position (y)
+  std::vector<std::int32_t> x_natural_, x_split_;  // local node (owned, then ghosts) -> x's positions
+  // Classes: the blocks of entries class_begin_[c] ... class_begin_[c + 1] (9 doubles each).
+  std::vector<std::uint32_t> class_begin_;
+  std::vector<double> block_;
+  // Runs of consecutive owned positions of one class and one set of offsets (a row's offsets to
+  // the plane below or above change from row to row where the planes' levels differ; along a
+  // run they do not): run r's offsets follow run r - 1's in run_offset_.
+  std::vector<std::int32_t> run_start_, run_count_, run_class_, run_offset_;
+  std::vector<double> self_;            // 9 per owned node
+  mutable std::vector<double> xs_, ys_;  // 3 x positions each, component-major
+  std::int32_t positions_ = 0;
+};
+
+}  // namespace wr
