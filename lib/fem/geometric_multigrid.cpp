@@ -473,27 +473,40 @@ void GeometricMultigrid::estimate_bounds(Level& L) {
 }
 
 void GeometricMultigrid::chebyshev(Level& L, Vec b, Vec x, bool zero_guess) {
-  // Chebyshev iteration on [lo, hi] x lambda with the Jacobi preconditioner (Saad, Alg. 12.1).
+  // Chebyshev iteration on [lo, hi] x lambda with the Jacobi preconditioner (Saad, Alg. 12.1),
+  // each step's vector updates fused into one pass after its product:
+  //   r = b - A x,  p = c1 D^-1 r + c2 p,  x = x + p.
   const double hi = set_.esteig_hi * L.lambda, lo = set_.esteig_lo * L.lambda;
   const double theta = 0.5 * (hi + lo), delta = 0.5 * (hi - lo);
-  if (zero_guess) {
-    check(VecCopy(b, L.r), "VecCopy");
-  } else {
-    L.mf->multiply(x, L.r);
-    check(VecAYPX(L.r, -1.0, b), "VecAYPX");
-  }
-  check(VecPointwiseMult(L.p, L.dinv, L.r), "VecPointwiseMult");
-  check(VecScale(L.p, 1.0 / theta), "VecScale");
-  if (zero_guess) check(VecCopy(L.p, x), "VecCopy");
-  else check(VecAXPY(x, 1.0, L.p), "VecAXPY");
+  auto step = [&](bool residual, bool first, double c1, double c2) {
+    const PetscScalar *ba = nullptr, *da = nullptr;
+    PetscScalar *ra = nullptr, *pa = nullptr, *xa = nullptr;
+    PetscInt n = 0;
+    check(VecGetLocalSize(x, &n), "VecGetLocalSize");
+    check(VecGetArrayRead(b, &ba), "VecGetArrayRead");
+    check(VecGetArrayRead(L.dinv, &da), "VecGetArrayRead");
+    check(VecGetArray(L.r, &ra), "VecGetArray");
+    check(VecGetArray(L.p, &pa), "VecGetArray");
+    check(VecGetArray(x, &xa), "VecGetArray");
+    for (PetscInt i = 0; i < n; ++i) {
+      const double r = residual ? ba[i] - ra[i] : ba[i];
+      const double p = first ? (da[i] * r) * c1 : c1 * (da[i] * r) + c2 * pa[i];
+      pa[i] = p;
+      xa[i] = residual ? xa[i] + p : p;
+    }
+    check(VecRestoreArray(x, &xa), "VecRestoreArray");
+    check(VecRestoreArray(L.p, &pa), "VecRestoreArray");
+    check(VecRestoreArray(L.r, &ra), "VecRestoreArray");
+    check(VecRestoreArrayRead(L.dinv, &da), "VecRestoreArrayRead");
+    check(VecRestoreArrayRead(b, &ba), "VecRestoreArrayRead");
+  };
+  if (!zero_guess) L.mf->multiply(x, L.r);
+  step(!zero_guess, true, 1.0 / theta, 0.0);
   double rho_old = delta / theta;
   for (int k = 1; k < set_.degree; ++k) {
     L.mf->multiply(x, L.r);
-    check(VecAYPX(L.r, -1.0, b), "VecAYPX");
     const double rho = 1.0 / (2.0 * theta / delta - rho_old);
-    check(VecPointwiseMult(L.t, L.dinv, L.r), "VecPointwiseMult");
-    check(VecAXPBY(L.p, 2.0 * rho / delta, rho * rho_old, L.t), "VecAXPBY");
-    check(VecAXPY(x, 1.0, L.p), "VecAXPY");
+    step(true, false, 2.0 * rho / delta, rho * rho_old);
     rho_old = rho;
   }
 }

@@ -1,5 +1,6 @@
 #include "lib/fem/matrix_free_framed.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "lib/fem/framed_stiffness.hpp"
@@ -25,6 +26,13 @@ MatrixFreeFramed::MatrixFreeFramed(const GradedMesh& mesh, MPI_Comm comm, double
   const PetscInt n = 3 * PetscInt(own_end_ - own_begin_);
   check(VecCreateMPI(comm, n, PETSC_DETERMINE, &diag_k_), "VecCreateMPI");
   check(VecDuplicate(diag_k_, &work_), "VecDuplicate");
+  check(VecDuplicate(diag_k_, &send_), "VecDuplicate");
+  for (std::int32_t n = own_begin_; n < own_end_; ++n)
+    if (face_slot_[std::size_t(n)] >= 0) {
+      face_node_.push_back(n - own_begin_);
+      face_node_slot_.push_back(face_slot_[std::size_t(n)]);
+    }
+  mask_.assign(std::size_t(n), 0);
   k_.diagonal(diag_k_);
   check(MatCreateShell(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, this, &shell_), "MatCreateShell");
   check(MatShellSetOperation(shell_, MATOP_MULT,
@@ -40,11 +48,13 @@ MatrixFreeFramed::~MatrixFreeFramed() {
   MatDestroy(&shell_);
   VecDestroy(&diag_k_);
   VecDestroy(&work_);
+  VecDestroy(&send_);
 }
 
 std::size_t MatrixFreeFramed::memory_bytes() const {
   return k_.memory_bytes() + (frames_.size() + blocks_.size() + face_diag_.size()) * sizeof(double) +
-         face_slot_.size() * sizeof(std::int32_t) + 2 * 3 * std::size_t(own_end_ - own_begin_) * sizeof(double);
+         face_slot_.size() * sizeof(std::int32_t) + 3 * 3 * std::size_t(own_end_ - own_begin_) * sizeof(double) + mask_.size() +
+         (face_node_.size() + face_node_slot_.size() + masked_nodes_.size()) * sizeof(std::int32_t);
 }
 
 void MatrixFreeFramed::set_frames(const std::vector<double>& frames) {
@@ -66,8 +76,77 @@ void MatrixFreeFramed::set_face_blocks(const std::vector<double>& blocks) {
   bump_state();
 }
 
+void MatrixFreeFramed::framed_value(std::int32_t k, const PetscScalar* x, double* v) const {
+  const std::size_t o = 3 * std::size_t(k);
+  double w[3];
+  for (int c = 0; c < 3; ++c) w[c] = mask_[o + std::size_t(c)] ? 0.0 : x[o + std::size_t(c)];
+  const std::int32_t s = face_slot_[std::size_t(own_begin_ + k)];
+  if (s < 0) {
+    std::copy(w, w + 3, v);
+    return;
+  }
+  const double* q = &frames_[9 * std::size_t(s)];
+  for (int i = 0; i < 3; ++i) v[i] = q[3 * i] * w[0] + q[3 * i + 1] * w[1] + q[3 * i + 2] * w[2];
+}
+
+// Khat x = P R^T (K + C) R P x + unit_diag (I - P) x: R P x differs from x only on the face nodes
+// and the eliminated dofs, so x goes into the stencils as it is and those nodes are overwritten.
 void MatrixFreeFramed::multiply(Vec x, Vec y) const {
-  k_.multiply_framed(x, y, face_slot_, frames_, blocks_, eliminated_, unit_diag_);
+  const NodeStencils& st = k_.stencils();
+  const PetscScalar* xa = nullptr;
+  check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
+  if (!st.edge_nodes().empty()) {
+    PetscScalar* sa = nullptr;
+    check(VecGetArray(send_, &sa), "VecGetArray");
+    for (std::int32_t k : st.edge_nodes()) framed_value(k, xa, sa + 3 * std::size_t(k));
+    check(VecRestoreArray(send_, &sa), "VecRestoreArray");
+  }
+  k_.begin_ghosts(send_);
+  st.load_owned(xa);
+  double v[3];
+  for (std::int32_t k : face_node_) {
+    framed_value(k, xa, v);
+    st.set_node(k, v);
+  }
+  for (std::int32_t k : masked_nodes_) {
+    framed_value(k, xa, v);
+    st.set_node(k, v);
+  }
+  k_.end_ghosts(send_);
+  PetscScalar* ya = nullptr;
+  check(VecGetArray(y, &ya), "VecGetArray");
+  st.product(ya);
+  for (std::size_t f = 0; f < face_node_.size(); ++f) {  // + C R P x, then R^T
+    const std::size_t o = 3 * std::size_t(face_node_[f]), s9 = 9 * std::size_t(face_node_slot_[f]);
+    double* yk = ya + o;
+    if (!blocks_.empty()) {
+      framed_value(face_node_[f], xa, v);
+      const double* c = &blocks_[s9];
+      for (int i = 0; i < 3; ++i) yk[i] += c[3 * i] * v[0] + c[3 * i + 1] * v[1] + c[3 * i + 2] * v[2];
+    }
+    const double* q = &frames_[s9];
+    double t[3];
+    for (int i = 0; i < 3; ++i) t[i] = q[i] * yk[0] + q[3 + i] * yk[1] + q[6 + i] * yk[2];
+    std::copy(t, t + 3, yk);
+  }
+  const PetscInt first = 3 * PetscInt(own_begin_);
+  for (PetscInt r : eliminated_) ya[r - first] = unit_diag_ * xa[r - first];
+  check(VecRestoreArray(y, &ya), "VecRestoreArray");
+  check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
+}
+
+void MatrixFreeFramed::refresh_mask() {
+  std::fill(mask_.begin(), mask_.end(), 0);
+  masked_nodes_.clear();
+  const PetscInt first = 3 * PetscInt(own_begin_);
+  for (PetscInt r : eliminated_) {
+    const std::size_t d = std::size_t(r - first);
+    if (d >= mask_.size()) throw std::invalid_argument("MatrixFreeFramed: an eliminated row not owned");
+    mask_[d] = 1;
+  }
+  for (std::size_t k = 0; 3 * k < mask_.size(); ++k)
+    if ((mask_[3 * k] || mask_[3 * k + 1] || mask_[3 * k + 2]) && face_slot_[std::size_t(own_begin_) + k] < 0)
+      masked_nodes_.push_back(std::int32_t(k));
 }
 
 void MatrixFreeFramed::diagonal(Vec d) const {
@@ -125,6 +204,7 @@ void MatrixFreeFramed::eliminate(const std::vector<PetscInt>& rows, double unit_
   for (PetscInt i = 0; i < n; ++i)
     if (mine[std::size_t(i)]) eliminated_.push_back(first + i);
   unit_diag_ = unit_diag;
+  refresh_mask();
   bump_state();
 }
 
@@ -138,12 +218,14 @@ void MatrixFreeFramed::bump_state() {
 void MatrixFreeFramed::set_eliminated(std::vector<PetscInt> rows, double unit_diag) {
   eliminated_ = std::move(rows);
   unit_diag_ = unit_diag;
+  refresh_mask();
   bump_state();
 }
 
 void MatrixFreeFramed::restore() {
   if (eliminated_.empty()) return;
   eliminated_.clear();
+  refresh_mask();
   bump_state();
 }
 

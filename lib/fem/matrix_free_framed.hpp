@@ -4,8 +4,10 @@
 // kept here as lists and applied around MatrixFreeStiffness's product,
 //   Khat x = P R^T (K + C) R P x + unit_diag (I - P) x,
 // so that the active-set loop runs unchanged on a block whose stiffness was never assembled.
-// Why: memory (the AIJ matrix is 2.6 GB at the thesis scene's refine 2; this holds the brick list,
-// 0.18 GB) and time (a product reads the vector and the brick list, not 81 nonzeros per row);
+// Why: memory (the AIJ matrix is 2.6 GB at the thesis scene's refine 2; this holds the stencils
+// and their buffers, 0.21 GB) and time (a product reads the vector and a few stencils, not 81
+// nonzeros per row). R P is applied to x's face and eliminated nodes only, on their way into
+// the stencils' layout, so that the product costs no extra pass over the whole vector;
 // the geometric multigrid (geometric_multigrid.hpp) smooths with this operator on every level.
 //
 // Contract: `mesh` outlives this object; face_slot[node] as in framed_operator.hpp. mat() is a
@@ -54,6 +56,9 @@ class MatrixFreeFramed final : public FramedOperator {
 
  private:
   void bump_state();
+  void refresh_mask();                       // mask_ and masked_nodes_ from eliminated_
+  void framed_value(std::int32_t k, const PetscScalar* x, double* v) const;  // (R P x) at owned node k
+
 
   MatrixFreeStiffness k_;
   std::vector<std::int32_t> face_slot_;
@@ -61,10 +66,14 @@ class MatrixFreeFramed final : public FramedOperator {
   std::vector<double> frames_, blocks_;  // 9 per face slot; blocks_ empty: no C
   std::vector<double> face_diag_;        // K's 3 x 3 diagonal blocks of the owned face slots
   std::vector<PetscInt> eliminated_;
+  std::vector<std::int32_t> face_node_, face_node_slot_;  // the owned face nodes (id - own_begin) and their slots
+  std::vector<char> mask_;                  // per owned dof: eliminated
+  std::vector<std::int32_t> masked_nodes_;  // owned nodes off the face with an eliminated dof
   double unit_diag_ = 1;
   unsigned long frames_version_ = 0;
   Vec diag_k_ = nullptr;  // diag(K), computed once
   Vec work_ = nullptr;
+  Vec send_ = nullptr;  // R P x on the edge nodes, for the other ranks' ghosts
   Mat shell_ = nullptr;
 };
 

@@ -26,22 +26,19 @@ MatrixFreeStiffness::MatrixFreeStiffness(const GradedMesh& g, MPI_Comm comm, dou
                                                     g.planes()[e + 1].z - g.planes()[e].z, young, poisson));
   stencils_ = std::make_unique<NodeStencils>(g, rank, layer_k);
   const std::vector<std::int32_t>& ghost_ids = stencils_->ghost_ids();
-  // The scatter of x's owned and ghost dofs into local_.
+  // The scatter of the ghosts' dofs into ghosts_.
   std::vector<PetscInt> from;
-  from.reserve(3 * (std::size_t(n_own) + ghost_ids.size()));
-  for (std::int32_t id = own_begin_; id < own_end_; ++id)
-    for (int c = 0; c < 3; ++c) from.push_back(3 * PetscInt(id) + c);
+  from.reserve(3 * ghost_ids.size());
   for (std::int32_t id : ghost_ids)
     for (int c = 0; c < 3; ++c) from.push_back(3 * PetscInt(id) + c);
   Vec global = nullptr;
   check(VecCreateMPI(comm, 3 * n_own, PETSC_DETERMINE, &global), "VecCreateMPI");
-  check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(from.size()), &local_), "VecCreateSeq");
+  check(VecCreateSeq(PETSC_COMM_SELF, PetscInt(from.size()), &ghosts_), "VecCreateSeq");
   IS is = nullptr;
   check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(from.size()), from.data(), PETSC_COPY_VALUES, &is), "ISCreateGeneral");
-  check(VecScatterCreate(global, is, local_, nullptr, &scatter_), "VecScatterCreate");
+  check(VecScatterCreate(global, is, ghosts_, nullptr, &scatter_), "VecScatterCreate");
   ISDestroy(&is);
   VecDestroy(&global);
-  check(VecCreateMPI(comm, 3 * n_own, PETSC_DETERMINE, &work_), "VecCreateMPI");
   check(MatCreateShell(comm, 3 * n_own, 3 * n_own, PETSC_DETERMINE, PETSC_DETERMINE, const_cast<MatrixFreeStiffness*>(this),
                        &shell_),
         "MatCreateShell");
@@ -57,57 +54,46 @@ MatrixFreeStiffness::MatrixFreeStiffness(const GradedMesh& g, MPI_Comm comm, dou
 MatrixFreeStiffness::~MatrixFreeStiffness() {
   MatDestroy(&shell_);
   VecScatterDestroy(&scatter_);
-  VecDestroy(&local_);
-  VecDestroy(&work_);
+  VecDestroy(&ghosts_);
 }
 
 std::size_t MatrixFreeStiffness::memory_bytes() const {
   PetscInt n = 0;
-  VecGetSize(local_, &n);
+  VecGetSize(ghosts_, &n);
   return stencils_->memory_bytes() + std::size_t(n) * sizeof(double);
 }
 
-void MatrixFreeStiffness::multiply(Vec x, Vec y) const {
-  check(VecScatterBegin(scatter_, x, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(scatter_, x, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  const PetscScalar* xl = nullptr;
-  PetscScalar* yo = nullptr;
-  check(VecGetArrayRead(local_, &xl), "VecGetArrayRead");
-  check(VecGetArray(y, &yo), "VecGetArray");
-  stencils_->apply(xl, yo);
-  check(VecRestoreArray(y, &yo), "VecRestoreArray");
-  check(VecRestoreArrayRead(local_, &xl), "VecRestoreArrayRead");
+void MatrixFreeStiffness::begin_ghosts(Vec v) const {
+  check(VecScatterBegin(scatter_, v, ghosts_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
 }
 
-void MatrixFreeStiffness::multiply_framed(Vec x, Vec y, const std::vector<std::int32_t>& face_slot, const std::vector<double>& frames,
-                                          const std::vector<double>& blocks, const std::vector<PetscInt>& eliminated,
-                                          double unit_diag) const {
-  const PetscInt first = 3 * PetscInt(own_begin_);
-  check(VecCopy(x, work_), "VecCopy");
-  PetscScalar* w = nullptr;
-  check(VecGetArray(work_, &w), "VecGetArray");
-  for (PetscInt r : eliminated) w[r - first] = 0;  // P x
-  rotate_face_dofs(w, own_begin_, own_end_, face_slot, frames, false);  // R P x
-  check(VecRestoreArray(work_, &w), "VecRestoreArray");
-  multiply(work_, y);
-  PetscScalar* yo = nullptr;
-  const PetscScalar *wv = nullptr, *xv = nullptr;
-  check(VecGetArray(y, &yo), "VecGetArray");
-  check(VecGetArrayRead(work_, &wv), "VecGetArrayRead");
-  if (!blocks.empty())  // + C R P x on the face nodes
-    for (std::int32_t n = own_begin_; n < own_end_; ++n) {
-      const std::int32_t s = face_slot[std::size_t(n)];
-      if (s < 0) continue;
-      const double* c = &blocks[9 * std::size_t(s)];
-      const std::size_t o = 3 * std::size_t(n - own_begin_);
-      for (int i = 0; i < 3; ++i) yo[o + i] += c[3 * i] * wv[o] + c[3 * i + 1] * wv[o + 1] + c[3 * i + 2] * wv[o + 2];
-    }
-  check(VecRestoreArrayRead(work_, &wv), "VecRestoreArrayRead");
-  rotate_face_dofs(yo, own_begin_, own_end_, face_slot, frames, true);  // R^T (K + C) R P x
-  check(VecGetArrayRead(x, &xv), "VecGetArrayRead");
-  for (PetscInt r : eliminated) yo[r - first] = unit_diag * xv[r - first];
-  check(VecRestoreArrayRead(x, &xv), "VecRestoreArrayRead");
-  check(VecRestoreArray(y, &yo), "VecRestoreArray");
+void MatrixFreeStiffness::end_ghosts(Vec v) const {
+  check(VecScatterEnd(scatter_, v, ghosts_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  const PetscScalar* g = nullptr;
+  check(VecGetArrayRead(ghosts_, &g), "VecGetArrayRead");
+  stencils_->load_ghosts(g);
+  check(VecRestoreArrayRead(ghosts_, &g), "VecRestoreArrayRead");
+}
+
+void MatrixFreeStiffness::load_owned(Vec x) const {
+  const PetscScalar* xa = nullptr;
+  check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
+  stencils_->load_owned(xa);
+  check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
+}
+
+void MatrixFreeStiffness::product(Vec y) const {
+  PetscScalar* ya = nullptr;
+  check(VecGetArray(y, &ya), "VecGetArray");
+  stencils_->product(ya);
+  check(VecRestoreArray(y, &ya), "VecRestoreArray");
+}
+
+void MatrixFreeStiffness::multiply(Vec x, Vec y) const {
+  begin_ghosts(x);
+  load_owned(x);  // while the ghosts travel
+  end_ghosts(x);
+  product(y);
 }
 
 void MatrixFreeStiffness::diagonal(Vec d) const {

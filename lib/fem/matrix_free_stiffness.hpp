@@ -51,13 +51,15 @@ class MatrixFreeStiffness {
 
   // y = K x (x not changed; y distinct from x).
   void multiply(Vec x, Vec y) const;
-  // The contact iteration's operator (framed_stiffness.hpp) without its matrix:
-  //   y = P R^T (K + C) R P x + unit_diag (I - P) x,
-  // R the face nodes' frames (9 per face slot, row-major Q with Q e_z = the constraint normal),
-  // C their symmetric 3 x 3 blocks in the global frame (9 per slot; empty: none), P zeroing the
-  // owned global dofs `eliminated`. face_slot[node]: the node's face slot or -1.
-  void multiply_framed(Vec x, Vec y, const std::vector<std::int32_t>& face_slot, const std::vector<double>& frames,
-                       const std::vector<double>& blocks, const std::vector<PetscInt>& eliminated, double unit_diag) const;
+  // The product in steps, for an operator that changes a few nodes' values of x first
+  // (MatrixFreeFramed): begin_ghosts(v) starts bringing in the other ranks' values from v (only
+  // v's entries on their edge nodes are read: stencils().edge_nodes()); load_owned(x) takes x's
+  // owned values; stencils().set_node() may then overwrite single nodes; end_ghosts() completes
+  // the ghosts; product(y) writes y = K x. Collective: begin_ghosts and end_ghosts.
+  void begin_ghosts(Vec v) const;
+  void end_ghosts(Vec v) const;
+  void load_owned(Vec x) const;
+  void product(Vec y) const;
   // d = diag(K): Jacobi's and Chebyshev's smoothers' only need of the matrix.
   void diagonal(Vec d) const;
   // The 3 x 3 diagonal blocks of K (row-major) of the owned nodes with face_slot[node] >= 0,
@@ -67,15 +69,14 @@ class MatrixFreeStiffness {
   // A MATSHELL of this operator (MatMult, MatGetDiagonal), for KSP; owned by this object.
   Mat mat() const { return shell_; }
   const NodeStencils& stencils() const { return *stencils_; }
-  std::size_t memory_bytes() const;  // the stencils, their buffers and the ghost buffer
+  std::size_t memory_bytes() const;  // the stencils, their buffers and the ghosts' values
 
  private:
   MPI_Comm comm_;
   std::int32_t own_begin_ = 0, own_end_ = 0;
   std::unique_ptr<NodeStencils> stencils_;
-  Vec local_ = nullptr;            // owned and ghost dofs of x, sequential
-  Vec work_ = nullptr;             // R P x, laid out as x
-  VecScatter scatter_ = nullptr;   // x -> local_
+  Vec ghosts_ = nullptr;           // the ghosts' dofs of x, sequential
+  VecScatter scatter_ = nullptr;   // x -> ghosts_
   Mat shell_ = nullptr;
 };
 

@@ -154,6 +154,9 @@ NodeStencils::NodeStencils(const GradedMesh& g, int rank, const std::vector<std:
         if (id < 0) continue;
         const std::size_t k = std::size_t(id - own_begin), c = L.cell(i, j);
         position_[k] = split_rows[p] ? L.split[c] : L.natural[c];
+        if ((i < g.owned_i_begin(rank, l) + kMargin && g.owned_i_begin(rank, l) > 0) ||
+            (i >= g.owned_i_end(rank, l) - kMargin && g.owned_i_end(rank, l) <= g.cells_x(l)))
+          edge_nodes_.push_back(std::int32_t(k));
         x_natural_[k] = L.natural[c];
         x_split_[k] = L.split[c];
       }
@@ -254,21 +257,31 @@ NodeStencils::NodeStencils(const GradedMesh& g, int rank, const std::vector<std:
 }
 
 std::size_t NodeStencils::memory_bytes() const {
-  return (ghost_ids_.size() + position_.size() + x_natural_.size() + x_split_.size() + run_offset_.size() + 3 * run_start_.size()) * sizeof(std::int32_t) +
+  return (ghost_ids_.size() + edge_nodes_.size() + position_.size() + x_natural_.size() + x_split_.size() + run_offset_.size() + 3 * run_start_.size()) * sizeof(std::int32_t) +
          class_begin_.size() * sizeof(std::uint32_t) + (block_.size() + self_.size() + xs_.size() + ys_.size()) * sizeof(double);
 }
 
-void NodeStencils::apply(const double* xl, double* yo) const {
+void NodeStencils::set_node(std::int32_t k, const double* v) const {
   const std::size_t stride = std::size_t(positions_);
-  double* xs = xs_.data();
-  for (std::size_t k = 0; k < x_natural_.size(); ++k)
-    for (const std::int32_t* at : {&x_natural_[k], &x_split_[k]}) {
-      const std::size_t q = std::size_t(*at);
-      xs[q] = xl[3 * k], xs[stride + q] = xl[3 * k + 1], xs[2 * stride + q] = xl[3 * k + 2];
-    }
+  for (const std::int32_t* at : {&x_natural_[std::size_t(k)], &x_split_[std::size_t(k)]}) {
+    const std::size_t q = std::size_t(*at);
+    xs_[q] = v[0], xs_[stride + q] = v[1], xs_[2 * stride + q] = v[2];
+  }
+}
+
+void NodeStencils::load_owned(const double* xo) const {
+  for (std::int32_t k = 0; k < owned_; ++k) set_node(k, xo + 3 * std::size_t(k));
+}
+
+void NodeStencils::load_ghosts(const double* xg) const {
+  for (std::size_t g = 0; g < ghost_ids_.size(); ++g) set_node(owned_ + std::int32_t(g), xg + 3 * g);
+}
+
+void NodeStencils::product(double* yo) const {
+  const std::size_t stride = std::size_t(positions_);
   static const ApplyRuns apply_runs = pick_apply_runs();
   apply_runs(run_start_.size(), run_start_.data(), run_count_.data(), run_class_.data(), class_begin_.data(), run_offset_.data(),
-             block_.data(), stride, xs, ys_.data());
+             block_.data(), stride, xs_.data(), ys_.data());
   const double* ys = ys_.data();
   for (std::int32_t k = 0; k < owned_; ++k) {
     const std::size_t q = std::size_t(position_[std::size_t(k)]);

@@ -29,12 +29,19 @@ class NodeStencils {
  public:
   NodeStencils(const GradedMesh& g, int rank, const std::vector<std::array<double, 576>>& layer_k);
 
-  // The other ranks' nodes that this rank's rows touch, in the order `apply` expects them after
-  // the owned ones.
+  // The other ranks' nodes that this rank's rows touch: their values come after the owned ones.
   const std::vector<std::int32_t>& ghost_ids() const { return ghost_ids_; }
-  // yo (3 x owned dofs) = the owned rows of K times x; xl holds the owned dofs (3 per node, node
-  // order) and then the ghosts' (ghost_ids() order). Not thread-safe: uses internal buffers.
-  void apply(const double* xl, double* yo) const;
+  // The owned nodes (id - own_begin) that other ranks may hold as ghosts: those within the
+  // layout's margin of the slab's edges.
+  const std::vector<std::int32_t>& edge_nodes() const { return edge_nodes_; }
+  // The product in steps, so that an operator built on K can change a few nodes' values on the
+  // way in (MatrixFreeFramed): load the owned values (3 per node, node order) and the ghosts'
+  // (3 per ghost, ghost_ids() order), overwrite single nodes, then yo (3 x owned) = K x. The
+  // loaded values live in internal buffers: not thread-safe, one product at a time.
+  void load_owned(const double* xo) const;
+  void load_ghosts(const double* xg) const;
+  void set_node(std::int32_t k, const double* v) const;  // owned node k's 3 values
+  void product(double* yo) const;
   // The 3 x 3 diagonal block (row-major) of owned node `k` (id - own_begin).
   const double* self_block(std::int32_t k) const { return &self_[9 * std::size_t(k)]; }
   std::size_t classes() const { return class_begin_.size() - 1; }
@@ -43,7 +50,7 @@ class NodeStencils {
 
  private:
   std::int32_t owned_ = 0;
-  std::vector<std::int32_t> ghost_ids_;
+  std::vector<std::int32_t> ghost_ids_, edge_nodes_;
   std::vector<std::int32_t> position_;             // owned node -> its row's position (y)
   std::vector<std::int32_t> x_natural_, x_split_;  // local node (owned, then ghosts) -> x's positions
   // Classes: the blocks of entries class_begin_[c] ... class_begin_[c + 1] (9 doubles each).
