@@ -122,28 +122,34 @@ Vec random_vector(MPI_Comm comm, Vec like, int seed) {
 }
 
 // CG needs a symmetric positive definite preconditioner: one V-cycle B satisfies
-// <B x, y> = <x, B y> to round-off and <B x, x> > 0, with turned frames and eliminations.
+// <B x, y> = <x, B y> to round-off and <B x, x> > 0, with turned frames and eliminations. With
+// the smoothers in double, to 1e-10; in float (the default), to 1e-6: float's unit round-off,
+// 6e-8, times the products' cancellation (a stiffness row sums to about zero).
 TEST(GeometricMultigrid, VCycleIsSymmetricPositiveDefinite) {
-  FramedBlock blk(64);
-  Vec x0 = nullptr, b0 = nullptr;
-  MatCreateVecs(blk.op.mat(), &x0, &b0);
-  VecSet(x0, 0.0);
-  blk.eliminate(x0, b0);
-  GeometricMultigrid mg(blk.spec, blk.mesh, blk.op, PETSC_COMM_WORLD, 3e6, 0.45, gmg_settings_from_options());
-  EXPECT_GE(mg.levels(), 3) << mg.describe();
-  mg.update();
-  Vec x = random_vector(PETSC_COMM_WORLD, x0, 1), y = random_vector(PETSC_COMM_WORLD, x0, 2), bx = nullptr, by = nullptr;
-  VecDuplicate(x, &bx);
-  VecDuplicate(x, &by);
-  mg.apply(x, bx);
-  mg.apply(y, by);
-  PetscScalar bxy = 0, xby = 0, bxx = 0;
-  VecDot(bx, y, &bxy);
-  VecDot(x, by, &xby);
-  VecDot(bx, x, &bxx);
-  EXPECT_NEAR(bxy / xby, 1.0, 1e-10);
-  EXPECT_GT(bxx, 0.0);
-  for (Vec* v : {&x0, &b0, &x, &y, &bx, &by}) VecDestroy(v);
+  for (bool single : {false, true}) {
+    FramedBlock blk(64);
+    Vec x0 = nullptr, b0 = nullptr;
+    MatCreateVecs(blk.op.mat(), &x0, &b0);
+    VecSet(x0, 0.0);
+    blk.eliminate(x0, b0);
+    GmgSettings settings = gmg_settings_from_options();
+    settings.single = single;
+    GeometricMultigrid mg(blk.spec, blk.mesh, blk.op, PETSC_COMM_WORLD, 3e6, 0.45, settings);
+    EXPECT_GE(mg.levels(), 3) << mg.describe();
+    mg.update();
+    Vec x = random_vector(PETSC_COMM_WORLD, x0, 1), y = random_vector(PETSC_COMM_WORLD, x0, 2), bx = nullptr, by = nullptr;
+    VecDuplicate(x, &bx);
+    VecDuplicate(x, &by);
+    mg.apply(x, bx);
+    mg.apply(y, by);
+    PetscScalar bxy = 0, xby = 0, bxx = 0;
+    VecDot(bx, y, &bxy);
+    VecDot(x, by, &xby);
+    VecDot(bx, x, &bxx);
+    EXPECT_NEAR(bxy / xby, 1.0, single ? 1e-6 : 1e-10) << "single " << single;
+    EXPECT_GT(bxx, 0.0);
+    for (Vec* v : {&x0, &b0, &x, &y, &bx, &by}) VecDestroy(v);
+  }
 }
 
 // Multigrid's defining property: CG's iterations to a fixed reduction do not grow with the mesh.

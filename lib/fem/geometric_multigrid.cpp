@@ -28,6 +28,7 @@ GmgSettings gmg_settings_from_options() {
   PetscBool flag = PETSC_FALSE;
   if (PetscOptionsGetBool(nullptr, nullptr, "-gmg_coarse_constraints", &flag, &set) == 0 && set)
     s.coarse_constraints = flag == PETSC_TRUE;
+  if (PetscOptionsGetBool(nullptr, nullptr, "-gmg_single", &flag, &set) == 0 && set) s.single = flag == PETSC_TRUE;
   PetscReal pair[2];
   PetscInt n = 2;
   if (PetscOptionsGetRealArray(nullptr, nullptr, "-gmg_esteig", pair, &n, &set) == 0 && set && n == 2 && pair[0] > 0 &&
@@ -291,7 +292,8 @@ std::size_t GeometricMultigrid::memory_bytes() const {
 std::string GeometricMultigrid::describe() const {
   std::string s = std::to_string(levels_.size()) + " levels (";
   for (std::size_t k = 0; k < levels_.size(); ++k) s += (k ? ", " : "") + std::to_string(levels_[k]->mesh->nodes());
-  s += " nodes), Chebyshev degree " + std::to_string(set_.degree) + (coarse_amg_ ? ", coarsest by AMG" : ", coarsest factored");
+  s += " nodes), Chebyshev degree " + std::to_string(set_.degree) + (set_.single ? " in float" : "") +
+       (coarse_amg_ ? ", coarsest by AMG" : ", coarsest factored");
   return s;
 }
 
@@ -500,11 +502,11 @@ void GeometricMultigrid::chebyshev(Level& L, Vec b, Vec x, bool zero_guess) {
     check(VecRestoreArrayRead(L.dinv, &da), "VecRestoreArrayRead");
     check(VecRestoreArrayRead(b, &ba), "VecRestoreArrayRead");
   };
-  if (!zero_guess) L.mf->multiply(x, L.r);
+  if (!zero_guess) L.mf->multiply_with(x, L.r, set_.single);
   step(!zero_guess, true, 1.0 / theta, 0.0);
   double rho_old = delta / theta;
   for (int k = 1; k < set_.degree; ++k) {
-    L.mf->multiply(x, L.r);
+    L.mf->multiply_with(x, L.r, set_.single);
     const double rho = 1.0 / (2.0 * theta / delta - rho_old);
     step(true, false, 2.0 * rho / delta, rho * rho_old);
     rho_old = rho;
@@ -543,7 +545,7 @@ void GeometricMultigrid::vcycle(std::size_t k, Vec b, Vec x) {
     return;
   }
   chebyshev(L, b, x, true);
-  L.mf->multiply(x, L.r);
+  L.mf->multiply_with(x, L.r, set_.single);
   check(VecAYPX(L.r, -1.0, b), "VecAYPX");
   Level& C = *levels_[k + 1];
   restrict_to(k, L.r, C.b);

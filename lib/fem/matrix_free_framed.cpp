@@ -33,6 +33,7 @@ MatrixFreeFramed::MatrixFreeFramed(const GradedMesh& mesh, MPI_Comm comm, double
       face_node_slot_.push_back(face_slot_[std::size_t(n)]);
     }
   mask_.assign(std::size_t(n), 0);
+  face_value_.assign(3 * face_node_.size(), 0.0);
   k_.diagonal(diag_k_);
   check(MatCreateShell(comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, this, &shell_), "MatCreateShell");
   check(MatShellSetOperation(shell_, MATOP_MULT,
@@ -54,7 +55,8 @@ MatrixFreeFramed::~MatrixFreeFramed() {
 std::size_t MatrixFreeFramed::memory_bytes() const {
   return k_.memory_bytes() + (frames_.size() + blocks_.size() + face_diag_.size()) * sizeof(double) +
          face_slot_.size() * sizeof(std::int32_t) + 3 * 3 * std::size_t(own_end_ - own_begin_) * sizeof(double) + mask_.size() +
-         (face_node_.size() + face_node_slot_.size() + masked_nodes_.size()) * sizeof(std::int32_t);
+         (face_node_.size() + face_node_slot_.size() + masked_nodes_.size()) * sizeof(std::int32_t) +
+         face_value_.size() * sizeof(double);
 }
 
 void MatrixFreeFramed::set_frames(const std::vector<double>& frames) {
@@ -76,7 +78,7 @@ void MatrixFreeFramed::set_face_blocks(const std::vector<double>& blocks) {
   bump_state();
 }
 
-void MatrixFreeFramed::framed_value(std::int32_t k, const PetscScalar* x, double* v) const {
+inline void MatrixFreeFramed::framed_value(std::int32_t k, const PetscScalar* x, double* v) const {
   const std::size_t o = 3 * std::size_t(k);
   double w[3];
   for (int c = 0; c < 3; ++c) w[c] = mask_[o + std::size_t(c)] ? 0.0 : x[o + std::size_t(c)];
@@ -91,7 +93,7 @@ void MatrixFreeFramed::framed_value(std::int32_t k, const PetscScalar* x, double
 
 // Khat x = P R^T (K + C) R P x + unit_diag (I - P) x: R P x differs from x only on the face nodes
 // and the eliminated dofs, so x goes into the stencils as it is and those nodes are overwritten.
-void MatrixFreeFramed::multiply(Vec x, Vec y) const {
+void MatrixFreeFramed::multiply_with(Vec x, Vec y, bool single) const {
   const NodeStencils& st = k_.stencils();
   const PetscScalar* xa = nullptr;
   check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
@@ -102,27 +104,28 @@ void MatrixFreeFramed::multiply(Vec x, Vec y) const {
     check(VecRestoreArray(send_, &sa), "VecRestoreArray");
   }
   k_.begin_ghosts(send_);
-  st.load_owned(xa);
-  double v[3];
-  for (std::int32_t k : face_node_) {
-    framed_value(k, xa, v);
-    st.set_node(k, v);
+  st.load_owned(xa, single);
+  double* fv = face_value_.data();  // R P x on the face nodes, kept for C below
+  for (std::size_t f = 0; f < face_node_.size(); ++f) {
+    framed_value(face_node_[f], xa, fv + 3 * f);
+    st.set_node(face_node_[f], fv + 3 * f, single);
   }
+  double v[3];
   for (std::int32_t k : masked_nodes_) {
     framed_value(k, xa, v);
-    st.set_node(k, v);
+    st.set_node(k, v, single);
   }
-  k_.end_ghosts(send_);
+  k_.end_ghosts(send_, single);
   PetscScalar* ya = nullptr;
   check(VecGetArray(y, &ya), "VecGetArray");
-  st.product(ya);
+  st.product(ya, single);
   for (std::size_t f = 0; f < face_node_.size(); ++f) {  // + C R P x, then R^T
-    const std::size_t o = 3 * std::size_t(face_node_[f]), s9 = 9 * std::size_t(face_node_slot_[f]);
-    double* yk = ya + o;
+    const std::size_t s9 = 9 * std::size_t(face_node_slot_[f]);
+    double* yk = ya + 3 * std::size_t(face_node_[f]);
     if (!blocks_.empty()) {
-      framed_value(face_node_[f], xa, v);
       const double* c = &blocks_[s9];
-      for (int i = 0; i < 3; ++i) yk[i] += c[3 * i] * v[0] + c[3 * i + 1] * v[1] + c[3 * i + 2] * v[2];
+      const double* w = fv + 3 * f;
+      for (int i = 0; i < 3; ++i) yk[i] += c[3 * i] * w[0] + c[3 * i + 1] * w[1] + c[3 * i + 2] * w[2];
     }
     const double* q = &frames_[s9];
     double t[3];

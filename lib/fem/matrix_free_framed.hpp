@@ -39,8 +39,10 @@ class MatrixFreeFramed final : public FramedOperator {
 
   // The elimination of eliminate() without its right-hand side (a multigrid level's operator).
   void set_eliminated(std::vector<PetscInt> rows, double unit_diag);
-  // y = Khat x with the state now in force; d = its diagonal.
-  void multiply(Vec x, Vec y) const;
+  // y = Khat x with the state now in force; d = its diagonal. multiply_with(.., true): K's
+  // product in float (the multigrid's smoothers), the framing in double.
+  void multiply(Vec x, Vec y) const { multiply_with(x, y, false); }
+  void multiply_with(Vec x, Vec y, bool single) const;
   void diagonal(Vec d) const;
   // The eliminated rows now in force (global, owned; empty after restore()) and their diagonal.
   const std::vector<PetscInt>& eliminated() const { return eliminated_; }
@@ -69,6 +71,7 @@ class MatrixFreeFramed final : public FramedOperator {
   std::vector<std::int32_t> face_node_, face_node_slot_;  // the owned face nodes (id - own_begin) and their slots
   std::vector<char> mask_;                  // per owned dof: eliminated
   std::vector<std::int32_t> masked_nodes_;  // owned nodes off the face with an eliminated dof
+  mutable std::vector<double> face_value_;  // a product's R P x on the face nodes
   double unit_diag_ = 1;
   unsigned long frames_version_ = 0;
   Vec diag_k_ = nullptr;  // diag(K), computed once

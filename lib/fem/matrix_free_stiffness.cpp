@@ -67,25 +67,25 @@ void MatrixFreeStiffness::begin_ghosts(Vec v) const {
   check(VecScatterBegin(scatter_, v, ghosts_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
 }
 
-void MatrixFreeStiffness::end_ghosts(Vec v) const {
+void MatrixFreeStiffness::end_ghosts(Vec v, bool single) const {
   check(VecScatterEnd(scatter_, v, ghosts_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
   const PetscScalar* g = nullptr;
   check(VecGetArrayRead(ghosts_, &g), "VecGetArrayRead");
-  stencils_->load_ghosts(g);
+  stencils_->load_ghosts(g, single);
   check(VecRestoreArrayRead(ghosts_, &g), "VecRestoreArrayRead");
 }
 
-void MatrixFreeStiffness::load_owned(Vec x) const {
+void MatrixFreeStiffness::load_owned(Vec x, bool single) const {
   const PetscScalar* xa = nullptr;
   check(VecGetArrayRead(x, &xa), "VecGetArrayRead");
-  stencils_->load_owned(xa);
+  stencils_->load_owned(xa, single);
   check(VecRestoreArrayRead(x, &xa), "VecRestoreArrayRead");
 }
 
-void MatrixFreeStiffness::product(Vec y) const {
+void MatrixFreeStiffness::product(Vec y, bool single) const {
   PetscScalar* ya = nullptr;
   check(VecGetArray(y, &ya), "VecGetArray");
-  stencils_->product(ya);
+  stencils_->product(ya, single);
   check(VecRestoreArray(y, &ya), "VecRestoreArray");
 }
 

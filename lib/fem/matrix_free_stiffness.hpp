@@ -55,11 +55,12 @@ class MatrixFreeStiffness {
   // (MatrixFreeFramed): begin_ghosts(v) starts bringing in the other ranks' values from v (only
   // v's entries on their edge nodes are read: stencils().edge_nodes()); load_owned(x) takes x's
   // owned values; stencils().set_node() may then overwrite single nodes; end_ghosts() completes
-  // the ghosts; product(y) writes y = K x. Collective: begin_ghosts and end_ghosts.
+  // the ghosts; product(y) writes y = K x. Collective: begin_ghosts and end_ghosts. single: the
+  // product in float (NodeStencils), for the multigrid's smoothers.
   void begin_ghosts(Vec v) const;
-  void end_ghosts(Vec v) const;
-  void load_owned(Vec x) const;
-  void product(Vec y) const;
+  void end_ghosts(Vec v, bool single = false) const;
+  void load_owned(Vec x, bool single = false) const;
+  void product(Vec y, bool single = false) const;
   // d = diag(K): Jacobi's and Chebyshev's smoothers' only need of the matrix.
   void diagonal(Vec d) const;
   // The 3 x 3 diagonal blocks of K (row-major) of the owned nodes with face_slot[node] >= 0,

@@ -38,10 +38,15 @@ class NodeStencils {
   // way in (MatrixFreeFramed): load the owned values (3 per node, node order) and the ghosts'
   // (3 per ghost, ghost_ids() order), overwrite single nodes, then yo (3 x owned) = K x. The
   // loaded values live in internal buffers: not thread-safe, one product at a time.
-  void load_owned(const double* xo) const;
-  void load_ghosts(const double* xg) const;
-  void set_node(std::int32_t k, const double* v) const;  // owned node k's 3 values
-  void product(double* yo) const;
+  // single: in float (the multigrid's smoothers: a preconditioner needs no more, and the product
+  // takes half the time), else in double.
+  void load_owned(const double* xo, bool single = false) const;
+  void load_ghosts(const double* xg, bool single = false) const;
+  void set_node(std::int32_t k, const double* v, bool single = false) const {  // owned node k's 3 values
+    if (single) put(xs_single_, k, v);
+    else put(xs_, k, v);
+  }
+  void product(double* yo, bool single = false) const;
   // The 3 x 3 diagonal block (row-major) of owned node `k` (id - own_begin).
   const double* self_block(std::int32_t k) const { return &self_[9 * std::size_t(k)]; }
   std::size_t classes() const { return class_begin_.size() - 1; }
@@ -49,6 +54,14 @@ class NodeStencils {
   std::size_t memory_bytes() const;
 
  private:
+  template <class T>
+  void put(std::vector<T>& xs, std::int32_t k, const double* v) const {
+    const std::size_t stride = std::size_t(positions_), a = std::size_t(x_natural_[std::size_t(k)]), b = std::size_t(x_split_[std::size_t(k)]);
+    for (int c = 0; c < 3; ++c) xs[std::size_t(c) * stride + a] = xs[std::size_t(c) * stride + b] = T(v[c]);
+  }
+  template <class T>
+  void product_in(const std::vector<T>& block, const std::vector<T>& xs, std::vector<T>& ys, double* yo) const;
+
   std::int32_t owned_ = 0;
   std::vector<std::int32_t> ghost_ids_, edge_nodes_;
   std::vector<std::int32_t> position_;             // owned node -> its row's position (y)
@@ -62,6 +75,8 @@ class NodeStencils {
   std::vector<std::int32_t> run_start_, run_count_, run_class_, run_offset_;
   std::vector<double> self_;            // 9 per owned node
   mutable std::vector<double> xs_, ys_;  // 3 x positions each, component-major
+  std::vector<float> block_single_;
+  mutable std::vector<float> xs_single_, ys_single_;
   std::int32_t positions_ = 0;
 };
 
