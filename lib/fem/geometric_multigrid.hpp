@@ -30,7 +30,7 @@
 // An unconstrained coarsest level, factored once, costs iterations that grow with the mesh
 // (14, 18, 25 CG iterations on faces of 16, 32, 64 cells against 11, 12, 13; test_fem_multigrid).
 //
-// PETSc options (the options database, as for every solver here): -gmg_degree (3),
+// PETSc options (the options database, as for every solver here): -gmg_degree (2),
 // -gmg_coarse_nodes (200), -gmg_direct_nodes (8000), -gmg_max_levels (8), -gmg_esteig lo,hi (0.1,1.1),
 // -gmg_esteig_steps (10), -gmg_coarse_constraints (true), -gmg_single (false; true: the smoothers
 // in float); the coarse solver under the prefix gmg_coarse_.
@@ -46,7 +46,7 @@
 namespace wr {
 
 struct GmgSettings {
-  int degree = 3;
+  int degree = 2;  // 3 costs a product more per smoothing for fewer CG iterations: 10 % slower (docs/performance.md)
   double coarse_nodes = 200;
   // The coarsest level is factored up to this many nodes, else given one AMG V-cycle.
   double direct_nodes = 8000;
