@@ -19,6 +19,8 @@
 // `layer_k` (N/m). Throws std::logic_error if the mesh breaks the layout's assumptions.
 #include <array>
 #include <cstdint>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "lib/fem/graded_mesh.hpp"
@@ -43,7 +45,7 @@ class NodeStencils {
   void load_owned(const double* xo, bool single = false) const;
   void load_ghosts(const double* xg, bool single = false) const;
   void set_node(std::int32_t k, const double* v, bool single = false) const {  // owned node k's 3 values
-    if (single) put(xs_single_, k, v);
+    if (single) put(xs_single_, k, v);  // after load_owned(.., true), which makes the float buffers
     else put(xs_, k, v);
   }
   void product(double* yo, bool single = false) const;
@@ -54,11 +56,20 @@ class NodeStencils {
   std::size_t memory_bytes() const;
 
  private:
+  struct PlaneLayout;
+  struct Layout;
+  struct Entry;
+  Layout lay_out(const GradedMesh& g, int rank);  // the layouts, position_, x_natural_, x_split_, edge_nodes_
+  void assemble(const GradedMesh& g, int rank, const Layout& layout, const std::vector<std::array<double, 576>>& layer_k);
+  void join_row(std::int32_t here, std::int32_t node, std::vector<Entry>& row,
+                std::unordered_map<std::string, std::int32_t>& class_index);
+  static void add_block(std::vector<Entry>& row, std::int32_t pos, double w, const double* k, int a, int c);
   template <class T>
   void put(std::vector<T>& xs, std::int32_t k, const double* v) const {
     const std::size_t stride = std::size_t(positions_), a = std::size_t(x_natural_[std::size_t(k)]), b = std::size_t(x_split_[std::size_t(k)]);
     for (int c = 0; c < 3; ++c) xs[std::size_t(c) * stride + a] = xs[std::size_t(c) * stride + b] = T(v[c]);
   }
+  void prepare_single() const;
   template <class T>
   void product_in(const std::vector<T>& block, const std::vector<T>& xs, std::vector<T>& ys, double* yo) const;
 
@@ -75,8 +86,7 @@ class NodeStencils {
   std::vector<std::int32_t> run_start_, run_count_, run_class_, run_offset_;
   std::vector<double> self_;            // 9 per owned node
   mutable std::vector<double> xs_, ys_;  // 3 x positions each, component-major
-  std::vector<float> block_single_;
-  mutable std::vector<float> xs_single_, ys_single_;
+  mutable std::vector<float> block_single_, xs_single_, ys_single_;  // made on first use
   std::int32_t positions_ = 0;
 };
 
