@@ -122,7 +122,7 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
                "fem: linear solver of the active-set systems: direct (sparse Cholesky: SuiteSparse CHOLMOD on one "
                "rank, MUMPS on several), amg (CG with the AMG preconditioner of --amg), gmg (no matrix: CG with a "
                "geometric multigrid on the block's own coarser meshes, a fraction of AMG's memory; -gmg_* options "
-               "through --petsc; not with --iteration newton), or auto (gmg from 250000 nodes, except for newton; "
+               "through --petsc; not with --iteration newton), or auto (gmg from 20000 nodes, except for newton; "
                "else direct up to 20000 nodes on one rank when only pressing; AMG otherwise: docs/performance.md)")
       ->capture_default_str();
   s.add_option("--thickness", c.thickness,

@@ -254,7 +254,8 @@ TEST(AmgHierarchy, AutomaticIsStandardWhereItFitsAndLeanBeyond) {
 TEST(LinearSolver, AutomaticIsDirectOnSmallOneRankBlocksOnly) {
   EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e4, 1), LinearSolver::direct);
   EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 1e4, 2), LinearSolver::amg);
-  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 10 * kDirectSolverMaxNodes, 1), LinearSolver::amg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 10 * kDirectSolverMaxNodes, 1), LinearSolver::gmg);
+  EXPECT_EQ(resolve_linear_solver(LinearSolver::automatic, 0.5 * kGmgMinNodes, 3), LinearSolver::amg);
   EXPECT_EQ(resolve_linear_solver(LinearSolver::direct, 1e7, 2), LinearSolver::direct);
   EXPECT_EQ(parse_linear_solver("direct", "--solver"), LinearSolver::direct);
   EXPECT_EQ(parse_linear_solver("gmg", "--solver"), LinearSolver::gmg);

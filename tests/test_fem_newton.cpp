@@ -38,6 +38,7 @@ BlockSpec cube_block(const HeightMap& map, int cells) {
   b.mesh.ly = map.ly();
   b.mesh.lz = map.lx();
   b.mesh.nx = b.mesh.ny = cells;
+  b.use.newton = true;  // as block_press_shear sets it: automatic then keeps the assembled matrix
   return b;
 }
 

@@ -17,16 +17,17 @@ enum class LinearSolver { automatic, direct, amg, gmg };
 // matrix-free operator does not.
 // automatic, in this order:
 // - Newton: AMG;
-// - from kGmgMinNodes nodes: the matrix-free geometric multigrid (gmg). On the thesis scene it
-//   pressed in 0.71x AMG's time with 0.21x its memory at refine 1 (325k nodes) and ran its first
-//   four iterations in 0.55x the time with 0.19x the memory at refine 2 (1.05M nodes), 2 ranks
-//   (docs/performance.md "Geometric multigrid against AMG", 2026-12-07);
+// - from kGmgMinNodes nodes: the matrix-free geometric multigrid (gmg). With the node-stencil
+//   kernel, on thesis-like surfaces at refine 1 (2 ranks, 2026-12-07), it pressed 32k, 144k and
+//   325k nodes in 0.31x, 0.36x and 0.28x AMG's time and sheared 32k nodes in 0.34x; at refine 2
+//   (1.05M nodes) a Signorini iteration took 0.245x AMG's time with 0.21x its memory
+//   (docs/performance.md "Geometric multigrid against AMG");
 // - a shear test: AMG (the direct solver was 1.5-1.9x slower in shear at every size measured);
 // - direct up to kDirectSolverMaxNodes nodes on one rank (10-28 % faster pressing 1-11k nodes),
 //   AMG above and on several ranks (MUMPS is not measured to win there).
 // scripts/bench-fem-solver.sh (docs/performance.md "Direct or AMG", 2026-12-06).
 inline constexpr double kDirectSolverMaxNodes = 20000;
-inline constexpr double kGmgMinNodes = 250000;
+inline constexpr double kGmgMinNodes = 20000;
 
 // What the block will solve, for automatic's choice.
 struct LinearSolverUse {
