@@ -279,15 +279,8 @@ void rotate_face_dofs(PetscScalar* a, PetscInt own_begin, PetscInt own_end, cons
   for (PetscInt n = own_begin; n < own_end; ++n) {
     const std::int32_t s = face_slot[std::size_t(n)];
     if (s < 0) continue;
-    const double* q = &frames[9 * std::size_t(s)];
     double* x = a + 3 * std::size_t(n - own_begin);
-    double y[3];
-    for (int i = 0; i < 3; ++i)
-      y[i] = transpose ? q[i] * x[0] + q[3 + i] * x[1] + q[6 + i] * x[2]
-                       : q[3 * i] * x[0] + q[3 * i + 1] * x[1] + q[3 * i + 2] * x[2];
-    x[0] = y[0];
-    x[1] = y[1];
-    x[2] = y[2];
+    rotate_node(&frames[9 * std::size_t(s)], x, x, transpose);
   }
 }
 

@@ -34,6 +34,19 @@
 
 namespace wr {
 
+// y = Q x (or Q^T x with transpose) for one node's 3 dofs, Q row-major: the one rotation that
+// every framed operator and transfer applies (in place: y may be x).
+inline void rotate_node(const double* q, const double* x, double* y, bool transpose) {
+  double t[3];
+  for (int i = 0; i < 3; ++i)
+    t[i] = transpose ? q[i] * x[0] + q[3 + i] * x[1] + q[6 + i] * x[2] : q[3 * i] * x[0] + q[3 * i + 1] * x[1] + q[3 * i + 2] * x[2];
+  y[0] = t[0], y[1] = t[1], y[2] = t[2];
+}
+// y += C x for one node's 3 x 3 block C (row-major).
+inline void add_node_block(const double* c, const double* x, double* y) {
+  for (int i = 0; i < 3; ++i) y[i] += c[3 * i] * x[0] + c[3 * i + 1] * x[1] + c[3 * i + 2] * x[2];
+}
+
 // a <- R a (transpose: R^T a) for the owned dofs `a` (3 per node from own_begin, as the matrix's
 // rows): Q = frames[9 slot ...] (row-major) on every owned face node, the identity elsewhere.
 void rotate_face_dofs(PetscScalar* a, PetscInt own_begin, PetscInt own_end, const std::vector<std::int32_t>& face_slot,

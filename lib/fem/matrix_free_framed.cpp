@@ -87,8 +87,7 @@ inline void MatrixFreeFramed::framed_value(std::int32_t k, const PetscScalar* x,
     std::copy(w, w + 3, v);
     return;
   }
-  const double* q = &frames_[9 * std::size_t(s)];
-  for (int i = 0; i < 3; ++i) v[i] = q[3 * i] * w[0] + q[3 * i + 1] * w[1] + q[3 * i + 2] * w[2];
+  rotate_node(&frames_[9 * std::size_t(s)], w, v, false);
 }
 
 // Khat x = P R^T (K + C) R P x + unit_diag (I - P) x: R P x differs from x only on the face nodes
@@ -122,15 +121,8 @@ void MatrixFreeFramed::multiply_with(Vec x, Vec y, bool single) const {
   for (std::size_t f = 0; f < face_node_.size(); ++f) {  // + C R P x, then R^T
     const std::size_t s9 = 9 * std::size_t(face_node_slot_[f]);
     double* yk = ya + 3 * std::size_t(face_node_[f]);
-    if (!blocks_.empty()) {
-      const double* c = &blocks_[s9];
-      const double* w = fv + 3 * f;
-      for (int i = 0; i < 3; ++i) yk[i] += c[3 * i] * w[0] + c[3 * i + 1] * w[1] + c[3 * i + 2] * w[2];
-    }
-    const double* q = &frames_[s9];
-    double t[3];
-    for (int i = 0; i < 3; ++i) t[i] = q[i] * yk[0] + q[3 + i] * yk[1] + q[6 + i] * yk[2];
-    std::copy(t, t + 3, yk);
+    if (!blocks_.empty()) add_node_block(&blocks_[s9], fv + 3 * f, yk);
+    rotate_node(&frames_[s9], yk, yk, true);
   }
   const PetscInt first = 3 * PetscInt(own_begin_);
   for (PetscInt r : eliminated_) ya[r - first] = unit_diag_ * xa[r - first];
@@ -243,9 +235,8 @@ void MatrixFreeFramed::multiply_unrotated(Vec v, Vec out) {
   for (std::int32_t n = own_begin_; n < own_end_; ++n) {
     const std::int32_t s = face_slot_[std::size_t(n)];
     if (s < 0) continue;
-    const double* c = &blocks_[9 * std::size_t(s)];
     const std::size_t o = 3 * std::size_t(n - own_begin_);
-    for (int i = 0; i < 3; ++i) oa[o + i] += c[3 * i] * va[o] + c[3 * i + 1] * va[o + 1] + c[3 * i + 2] * va[o + 2];
+    add_node_block(&blocks_[9 * std::size_t(s)], va + o, oa + o);
   }
   check(VecRestoreArray(out, &oa), "VecRestoreArray");
   check(VecRestoreArrayRead(v, &va), "VecRestoreArrayRead");
