@@ -45,6 +45,17 @@ std::vector<LoadTarget> load_plan(const ContactTestOptions& opt) {
   return plan;
 }
 
+std::vector<LoadTarget> extended_plan(const std::vector<LoadTarget>& old, std::size_t next, const LoadTarget& last,
+                                      const ContactTestOptions& opt) {
+  std::vector<LoadTarget> plan(old.begin(), old.begin() + std::ptrdiff_t(std::min(next, old.size())));
+  for (const LoadTarget& t : load_plan(opt)) {
+    // The normal phase's targets are the old run's (uz and the normal steps are fingerprinted).
+    const bool beyond = last.ux == 0 ? t.ux > 0 || t.uz > last.uz : t.ux > last.ux * (1 + 1e-12);
+    if (beyond) plan.push_back(t);
+  }
+  return plan;
+}
+
 double continuation_ratio(const LoadTarget& prev, const LoadTarget& last, const LoadTarget& next) {
   const double az = last.uz - prev.uz, ax = last.ux - prev.ux;  // the last increment
   const double bz = next.uz - last.uz, bx = next.ux - last.ux;  // the coming one
@@ -238,8 +249,18 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       opt.checkpoint_path.empty() && opt.restart_path.empty() ? 0 : contact_fingerprint(obstacle, opt);
   if (!opt.restart_path.empty()) {
     ContactCheckpoint c = read_contact_checkpoint(opt.restart_path, fingerprint, block.comm());
-    plan = std::move(c.plan);
     k_start = c.next;
+    if (opt.shear && !opt.to_peak && (c.ux != opt.ux || c.shear_steps != opt.shear_steps)) {
+      plan = extended_plan(c.plan, c.next, c.last, opt);
+      if (plan.size() == k_start) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, ": the checkpoint's run has reached ux %.6g m; a restart with --ux %.6g m has no step left",
+                      c.last.ux, opt.ux);
+        throw InputError("--restart", opt.restart_path + buf);
+      }
+    } else {
+      plan = std::move(c.plan);
+    }
     last = c.last;
     prev = c.prev;
     first_shear_iterations = c.first_shear_iterations;
@@ -248,8 +269,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     if (predict) prev_state = std::move(c.prev_state);
     res.steps = std::move(c.steps);
     if ((opt.trace || opt.progress_every_s > 0) && rank_of(opt.comm) == 0)
-      std::fprintf(stderr, "  restarted from %s: %zu converged steps, at uz %.4g m, ux %.4g m\n", opt.restart_path.c_str(),
-                   res.steps.size(), last.uz, last.ux);
+      std::fprintf(stderr, "  restarted from %s: %zu converged steps, at uz %.4g m, ux %.4g m; %zu steps to go\n",
+                   opt.restart_path.c_str(), res.steps.size(), last.uz, last.ux, plan.size() - k_start);
     if (on_step)
       for (const ContactStep& st : res.steps) on_step(st);
   }
@@ -258,6 +279,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     if (opt.checkpoint_path.empty()) return;
     ContactCheckpoint c;
     c.fingerprint = fingerprint;
+    c.ux = opt.ux;
+    c.shear_steps = opt.shear_steps;
     c.next = next;
     c.plan = plan;
     c.last = last;

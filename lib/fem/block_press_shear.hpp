@@ -89,7 +89,8 @@ struct ContactTestOptions {
   SecantPredictor secant_predictor = SecantPredictor::press;
   // Checkpoints (contact_checkpoint.hpp): written here after every converged load step when set;
   // a run with restart_path set continues from the checkpoint there (the same surface, options
-  // and rank count), reporting the steps it holds as its own. Both may name one file.
+  // and rank count), reporting the steps it holds as its own. Both may name one file. Its ux and
+  // shear_steps may differ (not with to_peak): the shear goes on by extended_plan.
   std::string checkpoint_path{};
   std::string restart_path{};
 };
@@ -120,6 +121,12 @@ double adapt_shear_step(double last_step, int iterations, int reference, double 
 // The requested states in order: opt.normal_steps equal normal increments to uz, then (shear)
 // opt.shear_steps equal tangential increments to ux at uz.
 std::vector<LoadTarget> load_plan(const ContactTestOptions& opt);
+
+// A restart's plan when it shears to another ux or in other steps than the checkpoint's run
+// (not with to_peak): the old plan's converged targets (old[0, next)), then those of
+// load_plan(opt) beyond `last`, the last converged state. Nothing beyond: plan.size() == next.
+std::vector<LoadTarget> extended_plan(const std::vector<LoadTarget>& old, std::size_t next, const LoadTarget& last,
+                                      const ContactTestOptions& opt);
 
 struct ContactTestResult {
   std::size_t nodes = 0, dofs = 0, face_nodes = 0, elements = 0, mesh_points = 0;

@@ -1,6 +1,7 @@
 #include "lib/fem/contact_checkpoint.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -183,10 +184,16 @@ std::uint64_t contact_fingerprint(const HeightMap& ob, const ContactTestOptions&
   f.value(ob.dx);
   f.value(ob.dy);
   f.bytes(ob.h.data(), ob.h.size() * sizeof(double));
-  for (double v : {o.uz, o.ux, o.height, o.young, o.poisson, o.curvature, o.damping, o.tolerance, o.ksp_rtol,
+  for (double v : {o.uz, o.height, o.young, o.poisson, o.curvature, o.damping, o.tolerance, o.ksp_rtol,
                    o.max_penetration, o.facet_band, o.block_normals, o.rms_slope})
     f.value(v);
-  for (int v : {int(o.shear), o.normal_steps, o.shear_steps, int(o.to_peak), o.refine, o.coarse_refine, o.layers_per_level,
+  // The shear's end and step count may change on a restart (the plan is extended from the last
+  // converged step), except when shearing to the peak, whose plan adapts as it goes.
+  if (o.to_peak) {
+    f.value(o.ux);
+    f.value(o.shear_steps);
+  }
+  for (int v : {int(o.shear), o.normal_steps, int(o.to_peak), o.refine, o.coarse_refine, o.layers_per_level,
                 o.max_coarsenings, int(o.follow_geometry), int(o.iteration), o.extrapolate_every, int(o.face_modes),
                 o.max_iterations, int(o.facet_normals), int(o.amg), int(o.solver), o.max_cutbacks, int(o.secant_predictor)})
     f.value(v);
@@ -226,10 +233,10 @@ void write_contact_checkpoint(const std::string& path, const ContactCheckpoint& 
   MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_LAND, comm);
   if (!ok) throw std::runtime_error(error.empty() ? path + ": another rank could not write its checkpoint" : error);
   if (rank == 0) {
-    char index[256];
-    std::snprintf(index, sizeof index, "%s\ngeneration %llu\nslot %d\nranks %d\nfingerprint %016llx\n", kFormat,
-                  static_cast<unsigned long long>(generation), slot, ranks,
-                  static_cast<unsigned long long>(c.fingerprint));
+    char index[320];
+    std::snprintf(index, sizeof index, "%s\ngeneration %llu\nslot %d\nranks %d\nfingerprint %016llx\nshear %a %d\n",
+                  kFormat, static_cast<unsigned long long>(generation), slot, ranks,
+                  static_cast<unsigned long long>(c.fingerprint), c.ux, c.shear_steps);
     write_file(path, index);
   }
   MPI_Barrier(comm);
@@ -247,7 +254,13 @@ ContactCheckpoint read_contact_checkpoint(const std::string& path, std::uint64_t
   unsigned long long generation = 0, fp = 0;
   int slot = -1, written_ranks = 0;
   index >> key >> generation >> key >> slot >> key >> written_ranks >> key >> std::hex >> fp;
-  if (!index || slot < 0 || slot > 1) throw InputError("--restart", path + ": a damaged checkpoint index");
+  std::string ux;
+  int shear_steps = 0;
+  index >> key >> ux >> shear_steps;
+  char* end = nullptr;
+  const double shear_ux = std::strtod(ux.c_str(), &end);
+  if (!index || slot < 0 || slot > 1 || key != "shear" || end == ux.c_str() || *end)
+    throw InputError("--restart", path + ": a damaged checkpoint index");
   if (written_ranks != ranks)
     throw InputError("--restart", path + ": written by " + std::to_string(written_ranks) + " ranks, restarted on " +
                                       std::to_string(ranks) + " (the block's partition must be the same)");
@@ -257,6 +270,8 @@ ContactCheckpoint read_contact_checkpoint(const std::string& path, std::uint64_t
   ContactCheckpoint c;
   c.fingerprint = fp;
   c.ranks = ranks;
+  c.ux = shear_ux;
+  c.shear_steps = shear_steps;
   Reader r(read_file(slot_file(path, slot, "rank" + std::to_string(rank))), path);
   c.last_state = get_state(r);
   c.prev_state = get_state(r);

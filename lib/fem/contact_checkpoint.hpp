@@ -9,7 +9,11 @@
 // multigrid (--solver gmg) to the bit, with the assembled matrix to round-off (its frames are
 // rotated incrementally, so its entries depend on the rotations before, ~1e-13).
 //
-// Files: `path` (an index: format, generation, slot, ranks, fingerprint), `path.<slot>.shared`
+// A restart may shear further than the run that wrote it (another --ux or --shear-steps, not with
+// --to-peak): the converged steps are kept and the new plan's steps beyond the last one follow.
+//
+// Files: `path` (an index: format, generation, slot, ranks, fingerprint, the shear's ux and
+// steps), `path.<slot>.shared`
 // (plan, records; rank 0) and `path.<slot>.rank<r>` (each rank's state), slot = generation % 2.
 // The slot files are written (temporary, then renamed) before the index names them, so a kill at
 // any moment leaves the index pointing at a complete checkpoint.
@@ -29,6 +33,8 @@ namespace wr {
 struct ContactCheckpoint {
   std::uint64_t fingerprint = 0;
   int ranks = 1;
+  double ux = 0;         // m, the --ux and --shear-steps of the run that wrote it
+  int shear_steps = 0;
   std::size_t next = 0;  // the index into `plan` of the next load step
   std::vector<LoadTarget> plan;
   LoadTarget last, prev;  // the last converged state and the one before
@@ -38,7 +44,8 @@ struct ContactCheckpoint {
 };
 
 // A 64-bit fingerprint (FNV-1a) of the obstacle's heights and spacing and of every option that
-// shapes the run's curve: a restart of another scene, another load or another solver is refused.
+// shapes the run's curve up to its last step: a restart of another scene, another load or another
+// solver is refused. The shear's end (ux, shear_steps) counts only with to_peak.
 std::uint64_t contact_fingerprint(const HeightMap& obstacle, const ContactTestOptions& opt);
 
 // Writes checkpoint `c` (collective on `comm`; every rank passes its own states, rank 0's
