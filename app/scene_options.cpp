@@ -31,8 +31,8 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
   s.add_option("--steps", sc.normal_steps, "load steps of the normal phase")->capture_default_str();
   s.add_option("--shear-steps", sc.shear_steps, "load steps of the shear phase (0: as --steps)")->capture_default_str();
   s.add_flag("--to-peak", sc.to_peak,
-             "fem shear: stop at the first converged step after the friction peak whose mu is lower (the static "
-             "friction found), --ux being then the most the top may move; steps start at --ux / --shear-steps and "
+             "fem shear: stop once the friction curve has turned over (a converged step 3 % below the peak, or two "
+             "below it: the static friction found), --ux being then the most the top may move; steps start at --ux / --shear-steps and "
              "halve after a step twice as hard as the first one (down to 1/8), never lengthen");
   s.add_option("--refine", sc.refine,
                "contact-face spacing = surface spacing / refine (fem mesh; spectral grid on the triangulated surface)")

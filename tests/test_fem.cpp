@@ -439,6 +439,10 @@ TEST(ContactCurve, PeakIsReachedOnlyWhenALaterShearStepFalls) {
   const auto turned = curve({0.1, 0.3, 0.25});
   EXPECT_DOUBLE_EQ(peak_friction(turned)->mu, 0.3);
   EXPECT_TRUE(peak_reached(turned));
+  // A dip within kPeakFall is the tolerance's noise until a second step stays below the peak.
+  EXPECT_FALSE(peak_reached(curve({0.1, 0.3, 0.295})));
+  EXPECT_FALSE(peak_reached(curve({0.1, 0.3, 0.295, 0.31})));  // it rose again: a new peak
+  EXPECT_TRUE(peak_reached(curve({0.1, 0.3, 0.295, 0.298})));
   EXPECT_TRUE(friction_peak_check(turned).passed);
   EXPECT_FALSE(friction_peak_check(rising).passed);
   EXPECT_FALSE(friction_peak_check(rising).decides_model);  // a longer --ux, not another model

@@ -31,8 +31,11 @@ const ContactStep* peak_friction(const std::vector<ContactStep>& steps) {
 bool peak_reached(const std::vector<ContactStep>& steps) {
   const ContactStep* peak = peak_friction(steps);
   if (!peak) return false;
-  for (const ContactStep* st = peak + 1; st < steps.data() + steps.size(); ++st)
-    if (in_shear_contact(*st) && st->mu < peak->mu) return true;
+  int below = 0;
+  for (const ContactStep* st = peak + 1; st < steps.data() + steps.size(); ++st) {
+    if (!in_shear_contact(*st) || !(st->mu < peak->mu)) continue;
+    if (st->mu < peak->mu - kPeakFall * std::abs(peak->mu) || ++below == 2) return true;
+  }
   return false;
 }
 
