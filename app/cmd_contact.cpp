@@ -455,7 +455,8 @@ Command add_contact(CLI::App& root) {
   s->add_option("--restart", c->restart,
                 "fem: continue the run from the checkpoint FILE (same surface, options and rank count; the steps it "
                 "holds are reported as this run's); may name the --checkpoint file. A larger --ux (or other "
-                "--shear-steps) shears on from the checkpoint's last step, except with --to-peak")
+                "--shear-steps) shears on from the checkpoint's last step, except with --to-peak; other --cutbacks apply to "
+                "the steps to come")
       ->type_name("FILE");
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");

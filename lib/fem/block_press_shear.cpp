@@ -260,6 +260,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       }
     } else {
       plan = std::move(c.plan);
+      for (std::size_t k = k_start; k < plan.size(); ++k)
+        plan[k].cutbacks_left = std::max(0, plan[k].cutbacks_left + opt.max_cutbacks - c.max_cutbacks);
     }
     last = c.last;
     prev = c.prev;
@@ -281,6 +283,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     c.fingerprint = fingerprint;
     c.ux = opt.ux;
     c.shear_steps = opt.shear_steps;
+    c.max_cutbacks = opt.max_cutbacks;
     c.next = next;
     c.plan = plan;
     c.last = last;

@@ -189,13 +189,14 @@ std::uint64_t contact_fingerprint(const HeightMap& ob, const ContactTestOptions&
     f.value(v);
   // The shear's end and step count may change on a restart (the plan is extended from the last
   // converged step), except when shearing to the peak, whose plan adapts as it goes.
+  // Nor do the cutbacks allowed from here on.
   if (o.to_peak) {
     f.value(o.ux);
     f.value(o.shear_steps);
   }
   for (int v : {int(o.shear), o.normal_steps, int(o.to_peak), o.refine, o.coarse_refine, o.layers_per_level,
                 o.max_coarsenings, int(o.follow_geometry), int(o.iteration), o.extrapolate_every, int(o.face_modes),
-                o.max_iterations, int(o.facet_normals), int(o.amg), int(o.solver), o.max_cutbacks, int(o.secant_predictor)})
+                o.max_iterations, int(o.facet_normals), int(o.amg), int(o.solver), int(o.secant_predictor)})
     f.value(v);
   return f.h;
 }
@@ -234,9 +235,9 @@ void write_contact_checkpoint(const std::string& path, const ContactCheckpoint& 
   if (!ok) throw std::runtime_error(error.empty() ? path + ": another rank could not write its checkpoint" : error);
   if (rank == 0) {
     char index[320];
-    std::snprintf(index, sizeof index, "%s\ngeneration %llu\nslot %d\nranks %d\nfingerprint %016llx\nshear %a %d\n",
+    std::snprintf(index, sizeof index, "%s\ngeneration %llu\nslot %d\nranks %d\nfingerprint %016llx\nshear %a %d\ncutbacks %d\n",
                   kFormat, static_cast<unsigned long long>(generation), slot, ranks,
-                  static_cast<unsigned long long>(c.fingerprint), c.ux, c.shear_steps);
+                  static_cast<unsigned long long>(c.fingerprint), c.ux, c.shear_steps, c.max_cutbacks);
     write_file(path, index);
   }
   MPI_Barrier(comm);
@@ -255,11 +256,12 @@ ContactCheckpoint read_contact_checkpoint(const std::string& path, std::uint64_t
   int slot = -1, written_ranks = 0;
   index >> key >> generation >> key >> slot >> key >> written_ranks >> key >> std::hex >> fp;
   std::string ux;
-  int shear_steps = 0;
-  index >> key >> ux >> shear_steps;
+  std::string key2;
+  int shear_steps = 0, cutbacks = -1;
+  index >> key >> ux >> shear_steps >> key2 >> cutbacks;
   char* end = nullptr;
   const double shear_ux = std::strtod(ux.c_str(), &end);
-  if (!index || slot < 0 || slot > 1 || key != "shear" || end == ux.c_str() || *end)
+  if (!index || slot < 0 || slot > 1 || key != "shear" || end == ux.c_str() || *end || key2 != "cutbacks" || cutbacks < 0)
     throw InputError("--restart", path + ": a damaged checkpoint index");
   if (written_ranks != ranks)
     throw InputError("--restart", path + ": written by " + std::to_string(written_ranks) + " ranks, restarted on " +
@@ -272,6 +274,7 @@ ContactCheckpoint read_contact_checkpoint(const std::string& path, std::uint64_t
   c.ranks = ranks;
   c.ux = shear_ux;
   c.shear_steps = shear_steps;
+  c.max_cutbacks = cutbacks;
   Reader r(read_file(slot_file(path, slot, "rank" + std::to_string(rank))), path);
   c.last_state = get_state(r);
   c.prev_state = get_state(r);
