@@ -388,6 +388,14 @@ int run_contact(ContactCli c) {
                       {"steps", steps},
                       {"validity", validity.json},
                       {"provenance", prov.to_json()}};
+  if (r.restart) {  // the kept steps were solved with the checkpoint's run's options
+    const RestartableOptions& o = r.restart->kept_options;
+    j["restart"] = {{"checkpoint", r.restart->checkpoint},
+                    {"steps_kept", r.restart->steps_kept},
+                    {"their_options",
+                     {{"--ux", o.ux}, {"--shear-steps", o.shear_steps}, {"--cutbacks", o.max_cutbacks},
+                      {"--tol", o.tolerance}, {"--max-penetration", o.max_penetration}}}};
+  }
   const ContactStep* peak = add_curve_summaries(j, r.steps, talk, s.map);
   if (rank == 0) write_contact_files(c, j, r.steps, r.face_nx, r.face_ny, r.face_spacing, prov);
   if (r.steps.empty()) outputs.discard("--vtu");  // no step: no deformed block to show
@@ -455,8 +463,8 @@ Command add_contact(CLI::App& root) {
   s->add_option("--restart", c->restart,
                 "fem: continue the run from the checkpoint FILE (same surface, options and rank count; the steps it "
                 "holds are reported as this run's); may name the --checkpoint file. A larger --ux (or other "
-                "--shear-steps) shears on from the checkpoint's last step, except with --to-peak; other --cutbacks apply to "
-                "the steps to come")
+                "--shear-steps) shears on from the checkpoint's last step, except with --to-peak; other --cutbacks, --tol "
+                "and --max-penetration apply to the steps to come (the JSON's \"restart\" says what the kept ones had)")
       ->type_name("FILE");
   s->add_option("--petsc", c->petsc, "PETSc options, e.g. \"-ksp_monitor -log_view\"");
   s->add_flag("-q,--quiet", c->quiet, "print nothing on success");

@@ -34,9 +34,9 @@ wait $pid 2>/dev/null || true
 [ -e "$W/cut.json" ] && { echo "FAIL: the killed run had already finished; nothing was restarted"; exit 1; }
 echo "killed after $(grep generation "$W/cp") converged steps"
 
-# A restart with other options is refused, naming --restart.
+# A restart with another load is refused, naming --restart.
 # shellcheck disable=SC2086
-if "$BIN" $(echo "$RUN" | sed 's/--tol 1e-4/--tol 2e-4/') --restart "$W/cp" 2>"$W/err.txt"; then echo "FAIL: a restart with another --tol ran"; exit 1; fi
+if "$BIN" $(echo "$RUN" | sed 's/--uz 8e-4/--uz 7e-4/') --restart "$W/cp" 2>"$W/err.txt"; then echo "FAIL: a restart with another --uz ran"; exit 1; fi
 grep -q -- "--restart" "$W/err.txt" || { echo "FAIL: no word of --restart:"; cat "$W/err.txt"; exit 1; }
 
 # shellcheck disable=SC2086
@@ -63,4 +63,7 @@ grep -q "has no step left" "$W/err2.txt" || { echo "FAIL: no word of the missing
 "$BIN" $RUN --json "$W/on.json" --restart "$W/cph" --cutbacks 1
 curve "$W/on.json" >"$W/on.txt"
 cmp "$W/whole.txt" "$W/on.txt" || { echo "FAIL: the extended curve differs"; diff "$W/whole.txt" "$W/on.txt"; exit 1; }
+# Its JSON says which steps were kept and what they were solved with.
+tr -d ' \n' <"$W/on.json" | grep -q '"restart":{"checkpoint":"[^"]*cph","steps_kept":5,"their_options":{"--cutbacks":0,"--max-penetration":[-0-9.eE+]*,"--shear-steps":3,"--tol":0.0001,"--ux":0.00045}}' ||
+  { echo "FAIL: no restart record in the JSON"; grep -A12 '"restart"' "$W/on.json"; exit 1; }
 echo "extended curve identical to the uninterrupted one"

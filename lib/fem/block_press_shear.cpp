@@ -250,7 +250,8 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
   if (!opt.restart_path.empty()) {
     ContactCheckpoint c = read_contact_checkpoint(opt.restart_path, fingerprint, block.comm());
     k_start = c.next;
-    if (opt.shear && !opt.to_peak && (c.ux != opt.ux || c.shear_steps != opt.shear_steps)) {
+    res.restart = RestartRecord{opt.restart_path, c.steps.size(), c.options};
+    if (opt.shear && !opt.to_peak && (c.options.ux != opt.ux || c.options.shear_steps != opt.shear_steps)) {
       plan = extended_plan(c.plan, c.next, c.last, opt);
       if (plan.size() == k_start) {
         char buf[160];
@@ -261,7 +262,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     } else {
       plan = std::move(c.plan);
       for (std::size_t k = k_start; k < plan.size(); ++k)
-        plan[k].cutbacks_left = std::max(0, plan[k].cutbacks_left + opt.max_cutbacks - c.max_cutbacks);
+        plan[k].cutbacks_left = std::max(0, plan[k].cutbacks_left + opt.max_cutbacks - c.options.max_cutbacks);
     }
     last = c.last;
     prev = c.prev;
@@ -281,9 +282,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     if (opt.checkpoint_path.empty()) return;
     ContactCheckpoint c;
     c.fingerprint = fingerprint;
-    c.ux = opt.ux;
-    c.shear_steps = opt.shear_steps;
-    c.max_cutbacks = opt.max_cutbacks;
+    c.options = {opt.ux, opt.shear_steps, opt.max_cutbacks, opt.tolerance, opt.max_penetration};
     c.next = next;
     c.plan = plan;
     c.last = last;

@@ -6,6 +6,7 @@
 // wall time. A step whose solver fails is retried in halves (max_cutbacks) or ends the run;
 // the finished steps are kept.
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,7 +91,8 @@ struct ContactTestOptions {
   // Checkpoints (contact_checkpoint.hpp): written here after every converged load step when set;
   // a run with restart_path set continues from the checkpoint there (the same surface, options
   // and rank count), reporting the steps it holds as its own. Both may name one file. Its ux and
-  // shear_steps may differ (not with to_peak): the shear goes on by extended_plan.
+  // shear_steps may differ (not with to_peak): the shear goes on by extended_plan; so may the
+  // cutbacks, tolerance and max_penetration of the steps to come (RestartableOptions).
   std::string checkpoint_path{};
   std::string restart_path{};
 };
@@ -128,6 +130,20 @@ std::vector<LoadTarget> load_plan(const ContactTestOptions& opt);
 std::vector<LoadTarget> extended_plan(const std::vector<LoadTarget>& old, std::size_t next, const LoadTarget& last,
                                       const ContactTestOptions& opt);
 
+// The options a restart may change, as the checkpoint's run had them (contact_checkpoint.hpp).
+struct RestartableOptions {
+  double ux = 0;  // m
+  int shear_steps = 0, max_cutbacks = 0;
+  double tolerance = 0, max_penetration = 0;  // -, m
+};
+
+// A restarted run: its checkpoint, the steps it kept, and the options they were solved with.
+struct RestartRecord {
+  std::string checkpoint;
+  std::size_t steps_kept = 0;
+  RestartableOptions kept_options;
+};
+
 struct ContactTestResult {
   std::size_t nodes = 0, dofs = 0, face_nodes = 0, elements = 0, mesh_points = 0;
   int layers = 0, coarsenings = 0;
@@ -139,6 +155,7 @@ struct ContactTestResult {
   std::vector<ContactStep> steps;
   bool failed = false;
   double wall_s = 0;
+  std::optional<RestartRecord> restart;  // set when restarted from a checkpoint
 };
 
 

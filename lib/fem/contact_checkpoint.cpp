@@ -184,12 +184,12 @@ std::uint64_t contact_fingerprint(const HeightMap& ob, const ContactTestOptions&
   f.value(ob.dx);
   f.value(ob.dy);
   f.bytes(ob.h.data(), ob.h.size() * sizeof(double));
-  for (double v : {o.uz, o.height, o.young, o.poisson, o.curvature, o.damping, o.tolerance, o.ksp_rtol,
-                   o.max_penetration, o.facet_band, o.block_normals, o.rms_slope})
+  for (double v : {o.uz, o.height, o.young, o.poisson, o.curvature, o.damping, o.ksp_rtol, o.facet_band,
+                   o.block_normals, o.rms_slope})
     f.value(v);
-  // The shear's end and step count may change on a restart (the plan is extended from the last
-  // converged step), except when shearing to the peak, whose plan adapts as it goes.
-  // Nor do the cutbacks allowed from here on.
+  // What a restart may change (RestartableOptions): the shear's end and step count (the plan is
+  // extended from the last converged step), except when shearing to the peak, whose plan adapts
+  // as it goes; the cutbacks, --tol and --max-penetration of the steps to come.
   if (o.to_peak) {
     f.value(o.ux);
     f.value(o.shear_steps);
@@ -235,9 +235,10 @@ void write_contact_checkpoint(const std::string& path, const ContactCheckpoint& 
   if (!ok) throw std::runtime_error(error.empty() ? path + ": another rank could not write its checkpoint" : error);
   if (rank == 0) {
     char index[320];
-    std::snprintf(index, sizeof index, "%s\ngeneration %llu\nslot %d\nranks %d\nfingerprint %016llx\nshear %a %d\ncutbacks %d\n",
+    std::snprintf(index, sizeof index, "%s\ngeneration %llu\nslot %d\nranks %d\nfingerprint %016llx\nshear %a %d\ncutbacks %d\ntol %a\nmax-penetration %a\n",
                   kFormat, static_cast<unsigned long long>(generation), slot, ranks,
-                  static_cast<unsigned long long>(c.fingerprint), c.ux, c.shear_steps, c.max_cutbacks);
+                  static_cast<unsigned long long>(c.fingerprint), c.options.ux, c.options.shear_steps,
+                  c.options.max_cutbacks, c.options.tolerance, c.options.max_penetration);
     write_file(path, index);
   }
   MPI_Barrier(comm);
@@ -254,15 +255,20 @@ ContactCheckpoint read_contact_checkpoint(const std::string& path, std::uint64_t
   std::string key;
   unsigned long long generation = 0, fp = 0;
   int slot = -1, written_ranks = 0;
-  index >> key >> generation >> key >> slot >> key >> written_ranks >> key >> std::hex >> fp;
-  std::string ux;
-  std::string key2;
-  int shear_steps = 0, cutbacks = -1;
-  index >> key >> ux >> shear_steps >> key2 >> cutbacks;
-  char* end = nullptr;
-  const double shear_ux = std::strtod(ux.c_str(), &end);
-  if (!index || slot < 0 || slot > 1 || key != "shear" || end == ux.c_str() || *end || key2 != "cutbacks" || cutbacks < 0)
-    throw InputError("--restart", path + ": a damaged checkpoint index");
+  index >> key >> generation >> key >> slot >> key >> written_ranks >> key >> std::hex >> fp >> std::dec;
+  RestartableOptions ro;
+  const auto hex_double = [&](const char* name, double& v) {  // "name value", value as written by %a
+    std::string k, text;
+    index >> k >> text;
+    char* end = nullptr;
+    v = std::strtod(text.c_str(), &end);
+    return index && k == name && end != text.c_str() && !*end;
+  };
+  bool ok = hex_double("shear", ro.ux);
+  index >> ro.shear_steps >> key >> ro.max_cutbacks;
+  ok = ok && index && key == "cutbacks" && ro.max_cutbacks >= 0;
+  ok = ok && hex_double("tol", ro.tolerance) && hex_double("max-penetration", ro.max_penetration);
+  if (!ok || slot < 0 || slot > 1) throw InputError("--restart", path + ": a damaged checkpoint index");
   if (written_ranks != ranks)
     throw InputError("--restart", path + ": written by " + std::to_string(written_ranks) + " ranks, restarted on " +
                                       std::to_string(ranks) + " (the block's partition must be the same)");
@@ -272,9 +278,7 @@ ContactCheckpoint read_contact_checkpoint(const std::string& path, std::uint64_t
   ContactCheckpoint c;
   c.fingerprint = fp;
   c.ranks = ranks;
-  c.ux = shear_ux;
-  c.shear_steps = shear_steps;
-  c.max_cutbacks = cutbacks;
+  c.options = ro;
   Reader r(read_file(slot_file(path, slot, "rank" + std::to_string(rank))), path);
   c.last_state = get_state(r);
   c.prev_state = get_state(r);

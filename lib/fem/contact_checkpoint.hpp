@@ -9,12 +9,13 @@
 // multigrid (--solver gmg) to the bit, with the assembled matrix to round-off (its frames are
 // rotated incrementally, so its entries depend on the rotations before, ~1e-13).
 //
-// A restart may shear further than the run that wrote it (another --ux or --shear-steps, not with
-// --to-peak): the converged steps are kept and the new plan's steps beyond the last one follow.
-// It may allow other cutbacks (--cutbacks): the steps to come get the difference.
+// A restart may change what only shapes the steps to come (RestartableOptions): shear further
+// (another --ux or --shear-steps, not with --to-peak: the converged steps are kept and the new
+// plan's steps beyond the last one follow), allow other cutbacks (the steps to come get the
+// difference), or solve the steps to come to another --tol or --max-penetration.
 //
 // Files: `path` (an index: format, generation, slot, ranks, fingerprint, the shear's ux and
-// steps, the cutbacks), `path.<slot>.shared`
+// steps, the cutbacks, tol, max-penetration), `path.<slot>.shared`
 // (plan, records; rank 0) and `path.<slot>.rank<r>` (each rank's state), slot = generation % 2.
 // The slot files are written (temporary, then renamed) before the index names them, so a kill at
 // any moment leaves the index pointing at a complete checkpoint.
@@ -34,9 +35,7 @@ namespace wr {
 struct ContactCheckpoint {
   std::uint64_t fingerprint = 0;
   int ranks = 1;
-  double ux = 0;         // m, the --ux and --shear-steps of the run that wrote it
-  int shear_steps = 0;
-  int max_cutbacks = 0;  // its --cutbacks
+  RestartableOptions options;  // of the run that wrote it
   std::size_t next = 0;  // the index into `plan` of the next load step
   std::vector<LoadTarget> plan;
   LoadTarget last, prev;  // the last converged state and the one before
@@ -47,7 +46,7 @@ struct ContactCheckpoint {
 
 // A 64-bit fingerprint (FNV-1a) of the obstacle's heights and spacing and of every option that
 // shapes the run's curve up to its last step: a restart of another scene, another load or another
-// solver is refused. The shear's end (ux, shear_steps) counts only with to_peak, the cutbacks never.
+// solver is refused. Of RestartableOptions only the shear's end counts, and only with to_peak.
 std::uint64_t contact_fingerprint(const HeightMap& obstacle, const ContactTestOptions& opt);
 
 // Writes checkpoint `c` (collective on `comm`; every rank passes its own states, rank 0's
