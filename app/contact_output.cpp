@@ -55,7 +55,8 @@ void print_peak(const ContactStep* peak, const std::vector<ContactStep>& steps) 
     std::printf("  static friction (peak mu of the shear steps): mu = %.4g at ux = %.4g m (step %d)\n", peak->mu,
                 peak->ux, int(peak - steps.data()) + 1);
   else
-    std::printf("  static friction: mu >= %.4g (still rising at ux = %.4g m, step %d: the peak lies beyond --ux)\n",
+    std::printf("  static friction: mu >= %.4g (highest at ux = %.4g m, step %d; not turned over: the peak lies beyond "
+                "--ux)\n",
                 peak->mu, peak->ux, int(peak - steps.data()) + 1);
 }
 

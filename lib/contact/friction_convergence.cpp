@@ -66,8 +66,9 @@ ValidityCheck friction_peak_check(const std::vector<ContactStep>& steps) {
   char buf[320];
   std::snprintf(buf, sizeof buf,
                 c.passed ? "mu peaks at %.4g (ux %.4g m, step %d) and falls after it"
-                         : "mu still rises at its last converged shear step (%.4g at ux %.4g m, step %d): the static "
-                           "friction is at least this; shear further (--ux)",
+                         : "mu has not turned over (its highest, %.4g at ux %.4g m, step %d, is neither followed by a "
+                           "step 3 %% lower nor by two lower ones): the static friction is at least this; shear further "
+                           "(--ux; a run with --checkpoint continues with --restart)",
                 peak->mu, peak->ux, int(peak - steps.data()) + 1);
   c.detail = buf;
   return c;
