@@ -30,6 +30,25 @@ BlockState secant_start(const BlockState& last, const BlockState& prev, double r
   return s;
 }
 
+// The plan a restart goes on with: the checkpoint's, with the cutbacks of the steps to come
+// shifted by the change of --cutbacks, or, when the shear's end or steps changed, extended_plan.
+std::vector<LoadTarget> restart_plan(const ContactCheckpoint& c, const ContactTestOptions& opt) {
+  if (opt.shear && !opt.to_peak && (c.options.ux != opt.ux || c.options.shear_steps != opt.shear_steps)) {
+    std::vector<LoadTarget> plan = extended_plan(c.plan, c.next, c.last, opt);
+    if (plan.size() == c.next) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, ": the checkpoint's run has reached ux %.6g m; a restart with --ux %.6g m has no step left",
+                    c.last.ux, opt.ux);
+      throw InputError("--restart", opt.restart_path + buf);
+    }
+    return plan;
+  }
+  std::vector<LoadTarget> plan = c.plan;
+  for (std::size_t k = c.next; k < plan.size(); ++k)
+    plan[k].cutbacks_left = std::max(0, plan[k].cutbacks_left + opt.max_cutbacks - c.options.max_cutbacks);
+  return plan;
+}
+
 }  // namespace
 
 double adapt_shear_step(double last_step, int iterations, int reference, double first) {
@@ -251,19 +270,7 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
     ContactCheckpoint c = read_contact_checkpoint(opt.restart_path, fingerprint, block.comm());
     k_start = c.next;
     res.restart = RestartRecord{opt.restart_path, c.steps.size(), c.options};
-    if (opt.shear && !opt.to_peak && (c.options.ux != opt.ux || c.options.shear_steps != opt.shear_steps)) {
-      plan = extended_plan(c.plan, c.next, c.last, opt);
-      if (plan.size() == k_start) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, ": the checkpoint's run has reached ux %.6g m; a restart with --ux %.6g m has no step left",
-                      c.last.ux, opt.ux);
-        throw InputError("--restart", opt.restart_path + buf);
-      }
-    } else {
-      plan = std::move(c.plan);
-      for (std::size_t k = k_start; k < plan.size(); ++k)
-        plan[k].cutbacks_left = std::max(0, plan[k].cutbacks_left + opt.max_cutbacks - c.options.max_cutbacks);
-    }
+    plan = restart_plan(c, opt);
     last = c.last;
     prev = c.prev;
     first_shear_iterations = c.first_shear_iterations;
