@@ -364,10 +364,12 @@ ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestO
       st.converged = false;
       // Where and how widely: the obstacle's slope there says whether a steep flank is to blame.
       const Vec3 n = ob.normal(s.deepest_at.x, s.deepest_at.y);
-      char buf[320];
+      char buf[480];
       std::snprintf(buf, sizeof buf,
                     "penetration %.3g m left at x %.3f mm, y %.3f mm (obstacle slope %.2f there; %zu face node%s deeper "
-                    "than the allowed %.3g m, --max-penetration); tighten --tol",
+                    "than the allowed %.3g m, --max-penetration); tighten --tol, or allow smaller steps (--cutbacks); "
+                    "a run with --checkpoint may go on with --restart and a looser --max-penetration, its nodes then "
+                    "that deep in the obstacle",
                     s.max_penetration, 1e3 * s.deepest_at.x, 1e3 * s.deepest_at.y, std::hypot(n.x, n.y) / n.z,
                     s.nodes_over_penetration, s.nodes_over_penetration == 1 ? "" : "s", opt.max_penetration);
       st.message = buf;
