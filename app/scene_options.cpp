@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "lib/contact/contact_step.hpp"
 #include "lib/core/errors.hpp"
 
 namespace wr::app {
@@ -31,9 +32,11 @@ void add_scene_options(CLI::App& s, SceneCli& c) {
   s.add_option("--steps", sc.normal_steps, "load steps of the normal phase")->capture_default_str();
   s.add_option("--shear-steps", sc.shear_steps, "load steps of the shear phase (0: as --steps)")->capture_default_str();
   s.add_flag("--to-peak", sc.to_peak,
-             "fem shear: stop once the friction curve has turned over (a converged step 3 % below the peak, or two "
-             "below it: the static friction found), --ux being then the most the top may move; steps start at --ux / --shear-steps and "
-             "halve after a step twice as hard as the first one (down to 1/8), never lengthen");
+             "fem shear: stop once the friction curve has turned over (a converged step " +
+                 std::to_string(int(100 * kPeakFall + 0.5)) +
+                 " % below the peak, or two below it: the static friction found), --ux being then the most the top "
+                 "may move; steps start at --ux / --shear-steps and halve after a step twice as hard as the first one "
+                 "(down to 1/8), never lengthen");
   s.add_option("--refine", sc.refine,
                "contact-face spacing = surface spacing / refine (fem mesh; spectral grid on the triangulated surface)")
       ->capture_default_str();

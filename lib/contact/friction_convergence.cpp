@@ -67,9 +67,9 @@ ValidityCheck friction_peak_check(const std::vector<ContactStep>& steps) {
   std::snprintf(buf, sizeof buf,
                 c.passed ? "mu peaks at %.4g (ux %.4g m, step %d) and falls after it"
                          : "mu has not turned over (its highest, %.4g at ux %.4g m, step %d, is neither followed by a "
-                           "step 3 %% lower nor by two lower ones): the static friction is at least this; shear further "
-                           "(--ux; a run with --checkpoint continues with --restart)",
-                peak->mu, peak->ux, int(peak - steps.data()) + 1);
+                           "step %.0f %% lower nor by two lower ones): the static friction is at least this; shear "
+                           "further (--ux; a run with --checkpoint continues with --restart)",
+                peak->mu, peak->ux, int(peak - steps.data()) + 1, 100 * kPeakFall);
   c.detail = buf;
   return c;
 }
