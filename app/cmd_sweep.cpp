@@ -150,6 +150,19 @@ std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
   return s;
 }
 
+// "  [rank 1] run 3/6, step 4: uz 9 mm, ux 2 mm, mu 0.0412, A/A0 0.5312, 138 s, 77 Signorini
+// iterations" on stderr as each step ends; a step that ends the run says why.
+void print_sweep_step(int rank, int run, int runs, int step, const ContactStep& s, bool fem) {
+  std::string extra;
+  if (fem) extra += ", " + std::to_string(s.signorini_iterations) + " Signorini iterations";
+  if (s.failed_attempts > 0) extra += " (after " + std::to_string(s.failed_attempts) + " failed longer attempts)";
+  if (!s.converged) extra += "; not converged: " + s.message;
+  std::fprintf(stderr, "  [rank %d] run %d/%d, step %d: uz %.4g mm, ux %.4g mm, mu %.4g, A/A0 %.4f, %.*f s%s\n", rank,
+               run, runs, step, 1e3 * s.uz, 1e3 * s.ux, s.mu, s.area_fraction, s.wall_s < 10 ? 1 : 0, s.wall_s,
+               extra.c_str());
+  std::fflush(stderr);
+}
+
 // What distinguishes one sweep kind from the other in the driver below.
 struct SweepKind {
   std::string command;                       // for the provenance
@@ -157,7 +170,8 @@ struct SweepKind {
   nlohmann::json spec;
   int runs = 0;
   std::string headline;                      // printed at the start
-  std::function<nlohmann::json(int index, int threads)> run;
+  // One run; `on_step` hears of each of its contact run's load steps as it ends (may be empty).
+  std::function<nlohmann::json(int index, int threads, const std::function<void(const ContactStep&)>& on_step)> run;
   std::function<std::string(const nlohmann::json& record)> describe;  // progress line
   std::function<nlohmann::json(const std::vector<nlohmann::json>&)> table;
   std::function<void(nlohmann::json& sweep)> extend;         // extra entries (thesis rows), may be empty
@@ -202,7 +216,16 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
   // count; one rank per core, so threads only without MPI.
   const int threads = ranks > 1 ? 1 : (c.threads > 0 ? c.threads : hardware_threads());
   const int all_failures = run_pending(
-      cp, pending, PETSC_COMM_WORLD, [&](int i) { return k.run(i, threads); },
+      cp, pending, PETSC_COMM_WORLD,
+      [&](int i) {
+        // A FEM run of the thesis's scale takes a quarter of an hour: a line per load step.
+        int step = 0;
+        const bool fem = k.spec["scene"]["model"] == "fem";
+        const auto on_step = [&](const ContactStep& s) {
+          if (!c.quiet) print_sweep_step(rank, i + 1, k.runs, ++step, s, fem);
+        };
+        return k.run(i, threads, on_step);
+      },
       [&](const SweepRunDone& d) {
         const nlohmann::json& rec = *d.record;
         if (rec["status"] != "ok")
@@ -361,9 +384,9 @@ int run_sweep_coverage(const CoverageCli& c) {
   k.headline = "coverage sweep: " + std::to_string(keys.size()) + " runs (" + std::to_string(spec.coverages.size()) +
                " coverages x " + std::to_string(spec.realizations) + " realizations), model " +
                (spec.hysteresis ? "hysteresis" : model_name(spec.scene.model));
-  k.run = [spec, keys, runner](int i, int threads) {
+  k.run = [spec, keys, runner](int i, int threads, const std::function<void(const ContactStep&)>& on_step) {
     if (!*runner) *runner = std::make_unique<CoverageRunner>(spec, PETSC_COMM_SELF, threads);
-    return (*runner)->run(keys[std::size_t(i)]);
+    return (*runner)->run(keys[std::size_t(i)], on_step);
   };
   k.describe = [](const nlohmann::json& r) {
     char b[160];
@@ -456,7 +479,9 @@ int run_sweep_roughness(const RoughnessCli& c) {
                std::to_string(spec.values.size()) + " values of " + parameter_name(spec.parameter) + " x " +
                std::to_string(spec.realizations) + " realizations), " + std::to_string(spec.base.nx) + " x " +
                std::to_string(spec.base.ny) + " surfaces, model " + (spec.hysteresis ? "hysteresis" : model_name(spec.scene.model));
-  k.run = [spec](int i, int threads) { return run_roughness_point(spec, i, PETSC_COMM_SELF, threads); };
+  k.run = [spec](int i, int threads, const std::function<void(const ContactStep&)>& on_step) {
+    return run_roughness_point(spec, i, PETSC_COMM_SELF, threads, on_step);
+  };
   k.describe = [](const nlohmann::json& r) {
     char b[160];
     const bool c = r.contains("contact");

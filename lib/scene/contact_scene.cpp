@@ -161,9 +161,10 @@ SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, 
   return r;
 }
 
-SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm) {
+SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm,
+                                     const SceneRunHooks& hooks) {
   try {
-    return run_contact_scene(obstacle, s, comm);
+    return run_contact_scene(obstacle, s, comm, hooks);
   } catch (const std::exception& e) {
     SceneResult r;
     r.failed = true;

@@ -119,7 +119,8 @@ void check_contact_scene(const ContactScene& s);
 SceneResult run_contact_scene(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm,
                               const SceneRunHooks& hooks = {});
 // The same, for runs among many (sweeps): an exception becomes a failed result with its message.
-SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm);
+SceneResult run_contact_scene_caught(const HeightMap& obstacle, const ContactScene& s, MPI_Comm comm,
+                                     const SceneRunHooks& hooks = {});
 
 // The analytic model's normal curve: Persson's contact area (erf form, eq. 3.162 / 5.3) at each
 // of the scene's normal_steps mean pressures up to s.pressure (> 0, Pa), for an obstacle of rms

@@ -90,17 +90,18 @@ void CoverageRunner::load_realization(int r) {
   loaded_ = r;
 }
 
-nlohmann::json CoverageRunner::run(const CoverageRunKey& key) {
+nlohmann::json CoverageRunner::run(const CoverageRunKey& key, const std::function<void(const ContactStep&)>& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    return run_unguarded(key);
+    return run_unguarded(key, on_step);
   } catch (const std::exception& e) {  // one failed run must not stop the others (or hang MPI)
     return {{"index", key.index}, {"realization", key.realization}, {"target", key.target}, {"status", "failed"},
             {"message", e.what()}, {"wall", {{"total", seconds_since(t0)}}}};
   }
 }
 
-nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key) {
+nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key,
+                                             const std::function<void(const ContactStep&)>& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   load_realization(key.realization);
   nlohmann::json rec = {{"index", key.index}, {"realization", key.realization}, {"seed", seed_},
@@ -157,7 +158,9 @@ nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key) {
   scene.threads = threads_;
   // One penetration tolerance for the whole sweep: the ground's (ContactScene::max_penetration).
   if (scene.max_penetration == 0) scene.max_penetration = default_max_penetration(ground_, threads_);
-  const SceneResult c = run_contact_scene_caught(wet, scene, comm_);
+  SceneRunHooks hooks;
+  hooks.on_step = on_step;
+  const SceneResult c = run_contact_scene_caught(wet, scene, comm_, hooks);
   rec["contact"] = scene_result_json(c);
   const bool ok = !c.failed && std::isfinite(c.mu_peak);
   rec["status"] = ok ? "ok" : "failed";

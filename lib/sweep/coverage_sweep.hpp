@@ -67,11 +67,12 @@ nlohmann::json sweep_spec_json(const CoverageSweepSpec& s);
 class CoverageRunner {
  public:
   CoverageRunner(const CoverageSweepSpec& spec, MPI_Comm contact_comm, int threads);
-  // Never throws: an exception becomes a failed record with the key and the reason.
-  nlohmann::json run(const CoverageRunKey& key);
+  // Never throws: an exception becomes a failed record with the key and the reason. `on_step`
+  // (may be empty) hears of every load step of the contact run as it ends, for progress lines.
+  nlohmann::json run(const CoverageRunKey& key, const std::function<void(const ContactStep&)>& on_step = {});
 
  private:
-  nlohmann::json run_unguarded(const CoverageRunKey& key);
+  nlohmann::json run_unguarded(const CoverageRunKey& key, const std::function<void(const ContactStep&)>& on_step);
   void load_realization(int r);
   CoverageSweepSpec spec_;
   MPI_Comm comm_;

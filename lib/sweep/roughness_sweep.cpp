@@ -114,7 +114,8 @@ nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s) {
 
 namespace {
 
-nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads) {
+nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads,
+                                   const std::function<void(const ContactStep&)>& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   const int vi = index / s.realizations, r = index % s.realizations;
   const double value = s.values[std::size_t(vi)];
@@ -151,7 +152,9 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
   }
   ContactScene scene = s.scene;
   scene.threads = threads;
-  const SceneResult c = run_contact_scene_caught(m, scene, comm);
+  SceneRunHooks hooks;
+  hooks.on_step = on_step;
+  const SceneResult c = run_contact_scene_caught(m, scene, comm, hooks);
   const NormalCurve curve = normal_curve(c.steps);  // the converged steps before the shear
   rec["contact"] = scene_result_json(c);
   rec["normal_curve"] = {{"sigma_star", curve.sigma_star}, {"area", curve.area}};
@@ -166,10 +169,11 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
 
 }  // namespace
 
-nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads) {
+nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads,
+                                   const std::function<void(const ContactStep&)>& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    return run_point_unguarded(s, index, comm, threads);
+    return run_point_unguarded(s, index, comm, threads, on_step);
   } catch (const std::exception& e) {  // one failed run must not stop the others (or hang MPI)
     const int vi = index / s.realizations;
     const double value = s.values[std::size_t(vi)];

@@ -18,6 +18,7 @@
 // wall {surface, contact, total}.
 #include <mpi.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,9 @@ int roughness_run_count(const RoughnessSweepSpec& s);
 // With the hysteresis model: fill the surface to its drained limit (as a skid tester leaves the
 // road) and record the wet mu at the scene's speed (mu_peak: local sealing) beside the dry one.
 // Never throws: an exception becomes a failed record with the key fields and the reason.
-nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads);
+// `on_step` (may be empty) hears of every load step of the contact run as it ends.
+nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads,
+                                   const std::function<void(const ContactStep&)>& on_step = {});
 
 // One row per value: mean, std, ci95 and cov (std / mean, the thesis's s*) of mu_peak,
 // area_at_peak, area_normal, kappa, h0 and rms_slope over the finished realizations; n, failed,
