@@ -17,6 +17,7 @@
 #include "app/synth_options.hpp"
 #include "lib/core/errors.hpp"
 #include "lib/core/fft.hpp"
+#include "lib/core/number_text.hpp"
 #include "lib/core/provenance.hpp"
 #include "lib/fem/petsc_session.hpp"
 #include "lib/io/atomic_output.hpp"
@@ -46,6 +47,7 @@ struct SweepCommonCli {
   CLI::Option* q1_opt = nullptr;
   int threads = 0;
   bool resume = false, quiet = false;
+  double step_lines_s = 10;  // --progress: a run's step is reported when it took this long
   // Options only the contact models read, and options only the hysteresis model reads: given
   // with the other kind of model they would be silently ignored, so they are refused by name.
   std::vector<CLI::Option*> contact_only, hysteresis_only;
@@ -65,6 +67,13 @@ void add_common_options(CLI::App& s, SweepCommonCli& c) {
   add_scene_options(s, c.sc);
   const auto scene_options = s.get_options();
   c.contact_only.assign(scene_options.begin() + std::ptrdiff_t(before_scene), scene_options.end());
+  c.contact_only.push_back(
+      s.add_option("--progress", c.step_lines_s,
+                   "contact models: report each load step of a run as it ends if it took at least this long, s "
+                   "(0: every step; a step that ends a run unconverged always)")
+          ->type_name("SECONDS")
+          ->check(CLI::NonNegativeNumber)
+          ->capture_default_str());
   c.hysteresis_only = {
       s.add_option("--compound", c.compound, "hysteresis: compound JSON (default share/compounds/synthetic-tread.json)")->type_name("FILE"),
       s.add_option("--pressure", c.pressure, "hysteresis: nominal pressure sigma0, Pa")->capture_default_str(),
@@ -157,8 +166,10 @@ void print_sweep_step(int rank, int run, int runs, int step, const ContactStep& 
   if (fem) extra += ", " + std::to_string(s.signorini_iterations) + " Signorini iterations";
   if (s.failed_attempts > 0) extra += " (after " + std::to_string(s.failed_attempts) + " failed longer attempts)";
   if (!s.converged) extra += "; not converged: " + s.message;
-  std::fprintf(stderr, "  [rank %d] run %d/%d, step %d: uz %.4g mm, ux %.4g mm, mu %.4g, A/A0 %.4f, %.*f s%s\n", rank,
-               run, runs, step, 1e3 * s.uz, 1e3 * s.ux, s.mu, s.area_fraction, s.wall_s < 10 ? 1 : 0, s.wall_s,
+  // Friction is only asked of shear steps; a press step's Fx / Fz is a by-product.
+  const std::string mu = s.ux != 0 ? ", mu " + number_text(s.mu, 4) : "";
+  std::fprintf(stderr, "  [rank %d] run %d/%d, step %d: uz %.4g mm, ux %.4g mm%s, A/A0 %.4f, %.*f s%s\n", rank, run,
+               runs, step, 1e3 * s.uz, 1e3 * s.ux, mu.c_str(), s.area_fraction, s.wall_s < 10 ? 1 : 0, s.wall_s,
                extra.c_str());
   std::fflush(stderr);
 }
@@ -218,11 +229,12 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
   const int all_failures = run_pending(
       cp, pending, PETSC_COMM_WORLD,
       [&](int i) {
-        // A FEM run of the thesis's scale takes a quarter of an hour: a line per load step.
+        // A FEM run at the thesis's scale takes a quarter of an hour: a line per slow load step.
         int step = 0;
         const bool fem = k.spec["scene"]["model"] == "fem";
         const auto on_step = [&](const ContactStep& s) {
-          if (!c.quiet) print_sweep_step(rank, i + 1, k.runs, ++step, s, fem);
+          ++step;
+          if (!c.quiet && (s.wall_s >= c.step_lines_s || !s.converged)) print_sweep_step(rank, i + 1, k.runs, step, s, fem);
         };
         return k.run(i, threads, on_step);
       },
