@@ -164,7 +164,9 @@ std::optional<FrictionScene> hysteresis_scene(const SweepCommonCli& c) {
 void print_sweep_step(int rank, int run, int runs, int step, const ContactStep& s, bool fem) {
   std::string extra;
   if (fem) extra += ", " + std::to_string(s.signorini_iterations) + " Signorini iterations";
-  if (s.failed_attempts > 0) extra += " (after " + std::to_string(s.failed_attempts) + " failed longer attempts)";
+  if (s.failed_attempts > 0)
+    extra += " (after " + std::to_string(s.failed_attempts) + (s.failed_attempts == 1 ? " failed attempt" : " failed attempts") +
+             " at a longer step)";
   if (!s.converged) extra += "; not converged: " + s.message;
   // Friction is only asked of shear steps; a press step's Fx / Fz is a by-product.
   const std::string mu = s.ux != 0 ? ", mu " + number_text(s.mu, 4) : "";
