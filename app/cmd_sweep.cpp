@@ -184,7 +184,7 @@ struct SweepKind {
   int runs = 0;
   std::string headline;                      // printed at the start
   // One run; `on_step` hears of each of its contact run's load steps as it ends (may be empty).
-  std::function<nlohmann::json(int index, int threads, const std::function<void(const ContactStep&)>& on_step)> run;
+  std::function<nlohmann::json(int index, int threads, const StepListener& on_step)> run;
   std::function<std::string(const nlohmann::json& record)> describe;  // progress line
   std::function<nlohmann::json(const std::vector<nlohmann::json>&)> table;
   std::function<void(nlohmann::json& sweep)> extend;         // extra entries (thesis rows), may be empty
@@ -228,12 +228,12 @@ int drive_sweep(const SweepCommonCli& c, const SweepKind& k) {
   // Each run alone on one rank (PETSC_COMM_SELF), so the answer does not depend on the rank
   // count; one rank per core, so threads only without MPI.
   const int threads = ranks > 1 ? 1 : (c.threads > 0 ? c.threads : hardware_threads());
+  const bool fem = k.spec["scene"]["model"] == "fem";
   const int all_failures = run_pending(
       cp, pending, PETSC_COMM_WORLD,
       [&](int i) {
         // A FEM run at the thesis's scale takes a quarter of an hour: a line per slow load step.
         int step = 0;
-        const bool fem = k.spec["scene"]["model"] == "fem";
         const auto on_step = [&](const ContactStep& s) {
           ++step;
           if (!c.quiet && (s.wall_s >= c.step_lines_s || !s.converged)) print_sweep_step(rank, i + 1, k.runs, step, s, fem);
@@ -398,7 +398,7 @@ int run_sweep_coverage(const CoverageCli& c) {
   k.headline = "coverage sweep: " + std::to_string(keys.size()) + " runs (" + std::to_string(spec.coverages.size()) +
                " coverages x " + std::to_string(spec.realizations) + " realizations), model " +
                (spec.hysteresis ? "hysteresis" : model_name(spec.scene.model));
-  k.run = [spec, keys, runner](int i, int threads, const std::function<void(const ContactStep&)>& on_step) {
+  k.run = [spec, keys, runner](int i, int threads, const StepListener& on_step) {
     if (!*runner) *runner = std::make_unique<CoverageRunner>(spec, PETSC_COMM_SELF, threads);
     return (*runner)->run(keys[std::size_t(i)], on_step);
   };
@@ -493,7 +493,7 @@ int run_sweep_roughness(const RoughnessCli& c) {
                std::to_string(spec.values.size()) + " values of " + parameter_name(spec.parameter) + " x " +
                std::to_string(spec.realizations) + " realizations), " + std::to_string(spec.base.nx) + " x " +
                std::to_string(spec.base.ny) + " surfaces, model " + (spec.hysteresis ? "hysteresis" : model_name(spec.scene.model));
-  k.run = [spec](int i, int threads, const std::function<void(const ContactStep&)>& on_step) {
+  k.run = [spec](int i, int threads, const StepListener& on_step) {
     return run_roughness_point(spec, i, PETSC_COMM_SELF, threads, on_step);
   };
   k.describe = [](const nlohmann::json& r) {

@@ -2,6 +2,7 @@
 // One load step of a contact experiment (Problem A or B, thesis sec. 4.2.2), whichever model
 // computed it (FEM: lib/fem/block_press_shear.hpp; spectral: lib/spectral/spectral_press_shear.hpp).
 // SI units: m, N, m^2; forces for the stated E.
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -47,6 +48,9 @@ struct ContactStep {
   // spectral ny x nx grid points. Pressure Pa, gap m, status 1 in contact / 0 free.
   std::vector<double> face_pressure, face_gap, face_status;
 };
+
+// Hears of each load step of a run as it ends (progress lines, live tables); may be empty.
+using StepListener = std::function<void(const ContactStep&)>;
 
 // A step whose forces, area or friction came out non-finite (NaN, Inf: a load beyond double
 // precision's range, or a solver breakdown) is no result: it is marked not converged with the

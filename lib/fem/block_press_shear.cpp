@@ -165,7 +165,7 @@ void check_fem_options(const ContactTestOptions& o) {
 }
 
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
-                                   const std::function<void(const ContactStep&)>& on_step) {
+                                   const StepListener& on_step) {
   if (!obstacle.periodic) throw InputError("--surface", "the obstacle must be a periodic surface");
   check_fem_options(opt);
   if (!(opt.rms_slope > 0)) throw InputError("--surface", "the obstacle has no slope (flat surface)");

@@ -184,6 +184,6 @@ void check_cutbacks(int cutbacks);
 
 // `obstacle` must be periodic. `on_step` (may be empty) is called after every step.
 ContactTestResult run_contact_test(const HeightMap& obstacle, const ContactTestOptions& opt,
-                                   const std::function<void(const ContactStep&)>& on_step = {});
+                                   const StepListener& on_step = {});
 
 }  // namespace wr

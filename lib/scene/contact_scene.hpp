@@ -80,7 +80,7 @@ struct SceneSetup {
 // What a run of a scene needs beyond the scene itself: where its results go while it runs.
 struct SceneRunHooks {
   std::function<void(const SceneSetup&)> on_setup;  // before the first step (may be empty)
-  std::function<void(const ContactStep&)> on_step;  // after every step (may be empty)
+  StepListener on_step;  // after every step (may be empty)
   const HeightMap* ground = nullptr;  // fem: the dry surface under a wet obstacle (penetration limit)
   bool face_maps = false;         // keep the contact-face maps of every step
   std::string vtu_path;           // fem: write the deformed block of the last step

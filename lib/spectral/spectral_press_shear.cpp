@@ -169,7 +169,7 @@ void check_spectral_test_options(const SpectralTestOptions& opt) {
 }
 
 SpectralTestResult run_spectral_contact_test(const HeightMap& obstacle, const SpectralTestOptions& opt,
-                                             const std::function<void(const ContactStep&)>& on_step) {
+                                             const StepListener& on_step) {
   if (!obstacle.periodic) throw InputError("--surface", "the spectral model needs a periodic surface");
   check_spectral_test_options(opt);
   const bool by_load = opt.pressure > 0;

@@ -57,6 +57,6 @@ void check_spectral_test_options(const SpectralTestOptions& opt);
 
 // A step that does not converge ends the run (failed); the finished steps are kept.
 SpectralTestResult run_spectral_contact_test(const HeightMap& obstacle, const SpectralTestOptions& opt,
-                                             const std::function<void(const ContactStep&)>& on_step = {});
+                                             const StepListener& on_step = {});
 
 }  // namespace wr

@@ -90,7 +90,7 @@ void CoverageRunner::load_realization(int r) {
   loaded_ = r;
 }
 
-nlohmann::json CoverageRunner::run(const CoverageRunKey& key, const std::function<void(const ContactStep&)>& on_step) {
+nlohmann::json CoverageRunner::run(const CoverageRunKey& key, const StepListener& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     return run_unguarded(key, on_step);
@@ -101,7 +101,7 @@ nlohmann::json CoverageRunner::run(const CoverageRunKey& key, const std::functio
 }
 
 nlohmann::json CoverageRunner::run_unguarded(const CoverageRunKey& key,
-                                             const std::function<void(const ContactStep&)>& on_step) {
+                                             const StepListener& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   load_realization(key.realization);
   nlohmann::json rec = {{"index", key.index}, {"realization", key.realization}, {"seed", seed_},

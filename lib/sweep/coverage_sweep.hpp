@@ -69,10 +69,10 @@ class CoverageRunner {
   CoverageRunner(const CoverageSweepSpec& spec, MPI_Comm contact_comm, int threads);
   // Never throws: an exception becomes a failed record with the key and the reason. `on_step`
   // (may be empty) hears of every load step of the contact run as it ends, for progress lines.
-  nlohmann::json run(const CoverageRunKey& key, const std::function<void(const ContactStep&)>& on_step = {});
+  nlohmann::json run(const CoverageRunKey& key, const StepListener& on_step = {});
 
  private:
-  nlohmann::json run_unguarded(const CoverageRunKey& key, const std::function<void(const ContactStep&)>& on_step);
+  nlohmann::json run_unguarded(const CoverageRunKey& key, const StepListener& on_step);
   void load_realization(int r);
   CoverageSweepSpec spec_;
   MPI_Comm comm_;

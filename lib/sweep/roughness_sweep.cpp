@@ -115,7 +115,7 @@ nlohmann::json roughness_spec_json(const RoughnessSweepSpec& s) {
 namespace {
 
 nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads,
-                                   const std::function<void(const ContactStep&)>& on_step) {
+                                   const StepListener& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   const int vi = index / s.realizations, r = index % s.realizations;
   const double value = s.values[std::size_t(vi)];
@@ -170,7 +170,7 @@ nlohmann::json run_point_unguarded(const RoughnessSweepSpec& s, int index, MPI_C
 }  // namespace
 
 nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads,
-                                   const std::function<void(const ContactStep&)>& on_step) {
+                                   const StepListener& on_step) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     return run_point_unguarded(s, index, comm, threads, on_step);

@@ -18,7 +18,6 @@
 // wall {surface, contact, total}.
 #include <mpi.h>
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,7 +56,7 @@ int roughness_run_count(const RoughnessSweepSpec& s);
 // Never throws: an exception becomes a failed record with the key fields and the reason.
 // `on_step` (may be empty) hears of every load step of the contact run as it ends.
 nlohmann::json run_roughness_point(const RoughnessSweepSpec& s, int index, MPI_Comm comm, int threads,
-                                   const std::function<void(const ContactStep&)>& on_step = {});
+                                   const StepListener& on_step = {});
 
 // One row per value: mean, std, ci95 and cov (std / mean, the thesis's s*) of mu_peak,
 // area_at_peak, area_normal, kappa, h0 and rms_slope over the finished realizations; n, failed,
